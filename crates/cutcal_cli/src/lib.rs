@@ -1,0 +1,1 @@
+//! cutcal CLI library.

@@ -1,0 +1,1 @@
+//! FE card exporters (in progress).

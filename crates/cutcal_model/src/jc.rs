@@ -1,0 +1,283 @@
+//! The Johnson-Cook flow stress (paper Eq 16 with the degradation function of Eq 14) and its derivatives.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{check_finite, ModelError};
+
+/// A Johnson-Cook parameter set, stresses in Pa, temperatures in degC.
+///
+/// `sigma = (A + B eps^n) (1 + C ln(epsdot/eps0)) g(T)`, `g(T) = 1 - ((T - Tr)/(Tm - Tr))^m`
+/// (paper Eqs 14 and 16; natural logarithm).
+///
+/// Conventions: below the reference temperature `Tr` the homologous temperature is clamped at 0
+/// (no hardening from cooling, the Abaqus/LS-DYNA convention); at or above `Tm` the stress is 0.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct JcParams {
+    /// Yield stress A, Pa.
+    pub a_pa: f64,
+    /// Hardening modulus B, Pa.
+    pub b_pa: f64,
+    /// Hardening exponent n, dimensionless.
+    pub n: f64,
+    /// Strain-rate constant C, dimensionless.
+    pub c: f64,
+    /// Thermal softening exponent m, dimensionless.
+    pub m: f64,
+    /// Reference strain rate, 1/s.
+    pub eps0_per_s: f64,
+    /// Melting temperature Tm, degC.
+    pub tm_c: f64,
+    /// Reference (room) temperature Tr, degC.
+    pub tr_c: f64,
+}
+
+/// Partial derivatives of the JC stress with respect to its five parameters `[A, B, n, C, m]`.
+pub type JcGradient = [f64; 5];
+
+impl JcParams {
+    /// Validating constructor.
+    ///
+    /// Returns an error if a value is NaN/infinite, A < 0, B < 0, n < 0, C < 0, m <= 0,
+    /// eps0 <= 0 or Tm <= Tr.
+    ///
+    /// # Example
+    /// ```
+    /// use cutcal_model::JcParams;
+    /// // Table 5 (paper), C38.
+    /// let jc = JcParams::new(589e6, 145e6, 0.25, 0.069, 1.1, 1.0, 1460.0, 20.0).unwrap();
+    /// assert!((jc.flow_stress(0.0, 1.0, 20.0) - 589e6).abs() < 1e-6);
+    /// ```
+    #[allow(clippy::too_many_arguments)] // the eight JC constants are one physical set, named at the call
+    pub fn new(
+        a_pa: f64,
+        b_pa: f64,
+        n: f64,
+        c: f64,
+        m: f64,
+        eps0_per_s: f64,
+        tm_c: f64,
+        tr_c: f64,
+    ) -> Result<Self, ModelError> {
+        let jc = Self {
+            a_pa,
+            b_pa,
+            n,
+            c,
+            m,
+            eps0_per_s,
+            tm_c,
+            tr_c,
+        };
+        jc.validate()?;
+        Ok(jc)
+    }
+
+    /// Checks every field (see [`JcParams::new`]).
+    pub fn validate(&self) -> Result<(), ModelError> {
+        for (name, v) in [
+            ("a_pa", self.a_pa),
+            ("b_pa", self.b_pa),
+            ("n", self.n),
+            ("c", self.c),
+            ("m", self.m),
+            ("eps0_per_s", self.eps0_per_s),
+            ("tm_c", self.tm_c),
+            ("tr_c", self.tr_c),
+        ] {
+            check_finite(name, v)?;
+        }
+        if self.a_pa < 0.0 {
+            return Err(ModelError::out_of_range("a_pa", self.a_pa, "A >= 0 Pa"));
+        }
+        if self.b_pa < 0.0 {
+            return Err(ModelError::out_of_range("b_pa", self.b_pa, "B >= 0 Pa"));
+        }
+        if !(0.0..=2.0).contains(&self.n) {
+            return Err(ModelError::out_of_range("n", self.n, "0 <= n <= 2"));
+        }
+        if self.c < 0.0 {
+            return Err(ModelError::out_of_range("c", self.c, "C >= 0"));
+        }
+        if self.m <= 0.0 || self.m > 10.0 {
+            return Err(ModelError::out_of_range("m", self.m, "0 < m <= 10"));
+        }
+        if self.eps0_per_s <= 0.0 {
+            return Err(ModelError::out_of_range(
+                "eps0_per_s",
+                self.eps0_per_s,
+                "eps0 > 0 1/s",
+            ));
+        }
+        if self.tm_c <= self.tr_c {
+            return Err(ModelError::Inconsistent(format!(
+                "melting temperature tm_c = {} degC must exceed the reference temperature tr_c = {} degC",
+                self.tm_c, self.tr_c
+            )));
+        }
+        Ok(())
+    }
+
+    /// Homologous temperature `(T - Tr)/(Tm - Tr)`, clamped to `[0, 1]`.
+    #[must_use]
+    pub fn homologous(&self, temperature_c: f64) -> f64 {
+        ((temperature_c - self.tr_c) / (self.tm_c - self.tr_c)).clamp(0.0, 1.0)
+    }
+
+    /// Thermal degradation `g(T) = 1 - theta^m` (paper Eq 14).
+    #[must_use]
+    pub fn softening(&self, temperature_c: f64) -> f64 {
+        1.0 - self.homologous(temperature_c).powf(self.m)
+    }
+
+    /// Strain-hardening term `A + B eps^n` (paper Eq 16), Pa.
+    #[must_use]
+    pub fn hardening(&self, strain: f64) -> f64 {
+        self.a_pa + self.b_pa * pow_n(strain, self.n)
+    }
+
+    /// Strain-rate term `1 + C ln(epsdot/eps0)` (paper Eq 16).
+    #[must_use]
+    pub fn rate_factor(&self, strain_rate_per_s: f64) -> f64 {
+        1.0 + self.c * (strain_rate_per_s / self.eps0_per_s).ln()
+    }
+
+    /// Johnson-Cook flow stress in Pa (paper Eq 16 with Eq 14).
+    ///
+    /// `strain` >= 0 (effective plastic strain), `strain_rate_per_s` > 0, `temperature_c` in degC.
+    #[must_use]
+    pub fn flow_stress(&self, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> f64 {
+        self.hardening(strain) * self.rate_factor(strain_rate_per_s) * self.softening(temperature_c)
+    }
+
+    /// Derivative of the flow stress with respect to strain (Pa).
+    #[must_use]
+    pub fn d_strain(&self, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> f64 {
+        let dh = if strain > 0.0 {
+            self.b_pa * self.n * strain.powf(self.n - 1.0)
+        } else {
+            0.0
+        };
+        dh * self.rate_factor(strain_rate_per_s) * self.softening(temperature_c)
+    }
+
+    /// Derivative of the flow stress with respect to strain rate (Pa s).
+    #[must_use]
+    pub fn d_strain_rate(&self, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> f64 {
+        self.hardening(strain) * self.c / strain_rate_per_s * self.softening(temperature_c)
+    }
+
+    /// Derivative of the flow stress with respect to temperature (Pa/K); 0 outside `(Tr, Tm)`.
+    #[must_use]
+    pub fn d_temperature(&self, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> f64 {
+        let span = self.tm_c - self.tr_c;
+        let theta = (temperature_c - self.tr_c) / span;
+        if theta <= 0.0 || theta >= 1.0 {
+            return 0.0;
+        }
+        let dg = -self.m * theta.powf(self.m - 1.0) / span;
+        self.hardening(strain) * self.rate_factor(strain_rate_per_s) * dg
+    }
+
+    /// Gradient of the flow stress with respect to `[A, B, n, C, m]` (A, B in Pa; result in Pa per unit).
+    #[must_use]
+    pub fn gradient(&self, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> JcGradient {
+        let en = pow_n(strain, self.n);
+        let h = self.a_pa + self.b_pa * en;
+        let lnr = (strain_rate_per_s / self.eps0_per_s).ln();
+        let rf = 1.0 + self.c * lnr;
+        let theta = self.homologous(temperature_c);
+        let tm = theta.powf(self.m);
+        let g = 1.0 - tm;
+        let d_n = if strain > 0.0 {
+            self.b_pa * en * strain.ln()
+        } else {
+            0.0
+        };
+        let d_m = if theta > 0.0 { -tm * theta.ln() } else { 0.0 };
+        [rf * g, en * rf * g, d_n * rf * g, h * lnr * g, h * rf * d_m]
+    }
+}
+
+/// `x^n` with `0^0 = 1` and `0^n = 0` for n > 0.
+fn pow_n(x: f64, n: f64) -> f64 {
+    if x > 0.0 {
+        x.powf(n)
+    } else if n == 0.0 {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn c38() -> JcParams {
+        // Table 5 (paper): C38 calibrated set.
+        JcParams::new(589e6, 145e6, 0.25, 0.069, 1.1, 1.0, 1460.0, 20.0).unwrap()
+    }
+
+    #[test]
+    fn flow_stress_matches_hand_calculation() {
+        // (589 + 145 * 1^0.25) * (1 + 0.069 ln(1e4)) * (1 - (480/1440)^1.1), evaluated by hand:
+        // 734 * 1.635510 * (1 - 0.298630) = 841.94 MPa
+        // (python: 734*(1+0.069*math.log(1e4))*(1-(480/1440)**1.1) = 841.944).
+        let s = c38().flow_stress(1.0, 1e4, 500.0);
+        let h = 734.0 * (1.0 + 0.069 * 1e4f64.ln()) * (1.0 - (480.0f64 / 1440.0).powf(1.1));
+        assert!((s / 1e6 - h).abs() < 1e-9);
+        assert!((h - 841.944).abs() < 1e-3);
+    }
+
+    #[test]
+    fn below_reference_temperature_no_softening() {
+        let jc = c38();
+        assert!((jc.softening(0.0) - 1.0).abs() < 1e-15);
+        assert!(jc.softening(1460.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn constructor_rejects_nonphysical_values() {
+        assert!(JcParams::new(f64::NAN, 1.0, 0.2, 0.01, 1.0, 1.0, 1460.0, 20.0).is_err());
+        assert!(JcParams::new(500e6, -1.0, 0.2, 0.01, 1.0, 1.0, 1460.0, 20.0).is_err());
+        assert!(JcParams::new(500e6, 1.0, 0.2, 0.01, 1.0, 1.0, 20.0, 20.0).is_err());
+    }
+
+    proptest! {
+        // Every analytic derivative equals a central difference at random admissible points.
+        #[test]
+        fn derivatives_match_central_differences(
+            a in 100e6..1000e6f64, b in 10e6..1000e6f64, n in 0.05..0.7f64, c in 0.001..0.2f64,
+            m in 0.7..1.3f64, eps in 0.05..3.0f64, lrate in 0.0..12.0f64, t in 40.0..1400.0f64,
+        ) {
+            let jc = JcParams::new(a, b, n, c, m, 1.0, 1460.0, 20.0).unwrap();
+            let rate = lrate.exp();
+            let s = |e: f64, r: f64, t: f64| jc.flow_stress(e, r, t);
+            let rel = |an: f64, fd: f64| (an - fd).abs() <= 1e-5 * (an.abs() + fd.abs()) + 1e-3;
+            let h = 1e-6 * eps;
+            prop_assert!(rel(jc.d_strain(eps, rate, t), (s(eps + h, rate, t) - s(eps - h, rate, t)) / (2.0 * h)));
+            let hr = 1e-6 * rate;
+            prop_assert!(rel(jc.d_strain_rate(eps, rate, t), (s(eps, rate + hr, t) - s(eps, rate - hr, t)) / (2.0 * hr)));
+            let ht = 1e-4;
+            prop_assert!(rel(jc.d_temperature(eps, rate, t), (s(eps, rate, t + ht) - s(eps, rate, t - ht)) / (2.0 * ht)));
+            let g = jc.gradient(eps, rate, t);
+            let p = [a, b, n, c, m];
+            for (k, gk) in g.iter().enumerate() {
+                let step = 1e-6 * p[k];
+                let mut up = p; up[k] += step;
+                let mut dn = p; dn[k] -= step;
+                let f = |q: [f64; 5]| JcParams { a_pa: q[0], b_pa: q[1], n: q[2], c: q[3], m: q[4], ..jc }.flow_stress(eps, rate, t);
+                prop_assert!(rel(*gk, (f(up) - f(dn)) / (2.0 * step)), "param {k}");
+            }
+        }
+
+        // Flow stress rises with strain and falls with temperature (for B, n > 0).
+        #[test]
+        fn monotone_in_strain_and_temperature(eps in 0.01..3.0f64, t in 20.0..1400.0f64) {
+            let jc = c38();
+            prop_assert!(jc.flow_stress(eps * 1.1, 1e4, t) > jc.flow_stress(eps, 1e4, t));
+            prop_assert!(jc.flow_stress(eps, 1e4, t + 10.0) < jc.flow_stress(eps, 1e4, t));
+        }
+    }
+}

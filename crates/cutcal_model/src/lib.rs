@@ -1,0 +1,32 @@
+//! cutcal_model: the physics of orthogonal cutting used by cutcal. No file I/O.
+//!
+//! Principal types:
+//! - [`Material`] with the temperature-dependent properties of the paper's Table 3 ([`TempPolynomial`]),
+//! - [`JcParams`], the Johnson-Cook flow stress (paper Eqs 14, 16),
+//! - [`CuttingTest`], conditions and measurements of one orthogonal test,
+//! - [`dpzd`], the distributed primary zone deformation model, original and enhanced (paper Sec 3),
+//!   returning a [`dpzd::ZoneSolution`].
+//!
+//! Data flow: fixtures (read by the CLI) -> `Material`, `CuttingTest` -> `dpzd::solve` ->
+//! `ZoneSolution` -> identification (crate `cutcal_ident`).
+//!
+//! Units: SI inside (Pa, m, s, J), temperatures in degC.
+//!
+//! ```text
+//! sigma = (A + B eps^n)(1 + C ln(epsdot/eps0)) (1 - ((T - Tr)/(Tm - Tr))^m)      (Eq 16, Eq 14)
+//! ```
+#![warn(missing_docs)]
+
+pub mod cutting_test;
+pub mod dpzd;
+pub mod error;
+pub mod jc;
+pub mod kinematics;
+pub mod material;
+pub mod poly;
+
+pub use cutting_test::{CuttingTest, Measured};
+pub use error::ModelError;
+pub use jc::JcParams;
+pub use material::{Elastic, Friction, Interface, Material, ThermalProperties};
+pub use poly::TempPolynomial;

@@ -1,0 +1,362 @@
+//! Materials: temperature-dependent properties (paper Table 3), melting and reference temperatures,
+//! and the tool-chip interface laws (paper Eq 17).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{check_finite, ModelError};
+use crate::poly::TempPolynomial;
+
+/// Temperature-dependent thermal properties in SI units, `T` in degC.
+///
+/// **Source:** paper Table 3 (C38/42CrMo4: rho(T) and Cp(T); AA6082 and H13A: rho*Cp(T) directly).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ThermalProperties {
+    /// Volumetric heat capacity rho(T) Cp(T), J/(m^3 K).
+    pub rho_cp: TempPolynomial,
+    /// Density, kg/m^3 (a constant polynomial where the source gives only rho*Cp).
+    pub density: TempPolynomial,
+    /// Thermal conductivity K(T), W/(m K).
+    pub conductivity: TempPolynomial,
+    /// Lowest temperature the fits are stated or used for, degC.
+    pub valid_from_c: f64,
+    /// Highest temperature the fits are stated or used for, degC.
+    pub valid_to_c: f64,
+}
+
+impl ThermalProperties {
+    /// Specific heat `Cp(T) = (rho Cp)(T) / rho(T)`, J/(kg K).
+    #[must_use]
+    pub fn specific_heat(&self, temperature_c: f64) -> f64 {
+        self.rho_cp.value(temperature_c) / self.density.value(temperature_c)
+    }
+
+    /// Checks that rho*Cp, rho and K are positive over the stated range (sampled every 10 K).
+    pub fn validate(&self, material: &str) -> Result<(), ModelError> {
+        if !(self.valid_from_c.is_finite()
+            && self.valid_to_c.is_finite()
+            && self.valid_from_c < self.valid_to_c)
+        {
+            return Err(ModelError::Inconsistent(format!(
+                "{material}: thermal validity range [{}, {}] degC is empty or not finite",
+                self.valid_from_c, self.valid_to_c
+            )));
+        }
+        let steps = ((self.valid_to_c - self.valid_from_c) / 10.0)
+            .ceil()
+            .max(1.0) as usize;
+        for i in 0..=steps {
+            let t =
+                self.valid_from_c + (self.valid_to_c - self.valid_from_c) * i as f64 / steps as f64;
+            for (name, v) in [
+                ("rho_cp", self.rho_cp.value(t)),
+                ("density", self.density.value(t)),
+                ("conductivity", self.conductivity.value(t)),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(ModelError::Inconsistent(format!(
+                        "{material}: {name} must be positive over [{}, {}] degC, got {v} at {t:.1} degC",
+                        self.valid_from_c, self.valid_to_c
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Isotropic linear elasticity (needed by FE cards, not by the cutting models).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Elastic {
+    /// Young's modulus, Pa.
+    pub youngs_pa: f64,
+    /// Poisson's ratio.
+    pub poisson: f64,
+}
+
+/// A workpiece or tool material.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Material {
+    /// Name, e.g. `C38`.
+    pub name: String,
+    /// Thermal properties.
+    pub thermal: ThermalProperties,
+    /// Temperature-dependent yield strength sigma0(T), Pa (workpieces; paper Table 3).
+    pub yield_strength: Option<TempPolynomial>,
+    /// Melting temperature Tm, degC.
+    pub melting_c: f64,
+    /// Room (reference) temperature Tr, degC.
+    pub room_c: f64,
+    /// Elastic constants, where known.
+    pub elastic: Option<Elastic>,
+}
+
+impl Material {
+    /// Validates the material: temperatures ordered and finite, thermal properties positive over
+    /// their range, yield strength positive from Tr up to the thermal range's top.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        check_finite("melting_c", self.melting_c)?;
+        check_finite("room_c", self.room_c)?;
+        if self.melting_c <= self.room_c {
+            return Err(ModelError::Inconsistent(format!(
+                "{}: melting temperature {} degC must exceed room temperature {} degC",
+                self.name, self.melting_c, self.room_c
+            )));
+        }
+        self.thermal.validate(&self.name)?;
+        if let Some(e) = self.elastic {
+            if !(e.youngs_pa.is_finite() && e.youngs_pa > 0.0) {
+                return Err(ModelError::out_of_range(
+                    "youngs_pa",
+                    e.youngs_pa,
+                    "E > 0 Pa",
+                ));
+            }
+            if !(e.poisson.is_finite() && e.poisson > -1.0 && e.poisson < 0.5) {
+                return Err(ModelError::out_of_range(
+                    "poisson",
+                    e.poisson,
+                    "-1 < nu < 0.5",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Yield strength sigma0(T) in Pa (paper Table 3).
+    ///
+    /// Returns an error if the material has no yield-strength law, the temperature is at or
+    /// above melting, or the law gives a non-positive value there.
+    pub fn yield_strength_pa(&self, temperature_c: f64) -> Result<f64, ModelError> {
+        let law = self.yield_strength.as_ref().ok_or_else(|| {
+            ModelError::Inconsistent(format!(
+                "{}: no yield_strength law (needed by the DPZD model)",
+                self.name
+            ))
+        })?;
+        self.check_below_melting("yield strength argument", temperature_c)?;
+        let s = law.value(temperature_c);
+        if s > 0.0 {
+            Ok(s)
+        } else {
+            Err(ModelError::out_of_range(
+                format!("{} yield strength at {temperature_c:.1} degC", self.name),
+                s,
+                "sigma0(T) > 0 Pa (the Table 3 fit is used outside its range)",
+            ))
+        }
+    }
+
+    /// Errors if `temperature_c` is NaN or at/above the melting temperature.
+    pub fn check_below_melting(&self, what: &str, temperature_c: f64) -> Result<(), ModelError> {
+        if temperature_c.is_nan() || temperature_c >= self.melting_c {
+            return Err(ModelError::AboveMelting {
+                what: what.to_string(),
+                temperature_c,
+                melting_c: self.melting_c,
+            });
+        }
+        Ok(())
+    }
+
+    /// Heat taken up per unit volume from `from_c` to `to_c`: the exact integral of rho*Cp(T), J/m^3.
+    ///
+    /// **Source:** integral form of paper Eq 12 (adiabatic energy balance).
+    #[must_use]
+    pub fn heat_content_j_per_m3(&self, from_c: f64, to_c: f64) -> f64 {
+        self.thermal.rho_cp.integral(from_c, to_c)
+    }
+
+    /// Solves `integral_{from}^{T} rho*Cp dT = heat` for `T` with a safeguarded Newton iteration.
+    ///
+    /// **Source:** paper Eq 12 integrated along the flow line (adiabatic).
+    ///
+    /// Returns [`ModelError::AboveMelting`] if the heat would take the material to or past `Tm`.
+    pub fn temperature_after_heating(
+        &self,
+        from_c: f64,
+        heat_j_per_m3: f64,
+    ) -> Result<f64, ModelError> {
+        check_finite("heat_j_per_m3", heat_j_per_m3)?;
+        if heat_j_per_m3 < 0.0 {
+            return Err(ModelError::out_of_range(
+                "heat_j_per_m3",
+                heat_j_per_m3,
+                "heat >= 0 J/m^3",
+            ));
+        }
+        let top = self.melting_c;
+        let h_top = self.heat_content_j_per_m3(from_c, top);
+        if heat_j_per_m3 >= h_top {
+            return Err(ModelError::AboveMelting {
+                what: "adiabatic temperature".into(),
+                temperature_c: top
+                    + (heat_j_per_m3 - h_top) / self.thermal.rho_cp.value(top).max(1.0),
+                melting_c: top,
+            });
+        }
+        let (mut lo, mut hi) = (from_c, top);
+        let c0 = self.thermal.rho_cp.value(from_c);
+        let mut t = (from_c + heat_j_per_m3 / c0).clamp(lo, hi);
+        for _ in 0..100 {
+            let f = self.heat_content_j_per_m3(from_c, t) - heat_j_per_m3;
+            if f > 0.0 {
+                hi = t;
+            } else {
+                lo = t;
+            }
+            let df = self.thermal.rho_cp.value(t);
+            let mut next = t - f / df;
+            if !(next > lo && next < hi) || df <= 0.0 {
+                next = 0.5 * (lo + hi);
+            }
+            if (next - t).abs() < 1e-10 * (1.0 + t.abs()) || hi - lo < 1e-10 {
+                return Ok(next);
+            }
+            t = next;
+        }
+        Err(ModelError::NoConvergence {
+            what: "adiabatic temperature (Newton)".into(),
+            iterations: 100,
+            last_change: hi - lo,
+            tolerance: 1e-10,
+        })
+    }
+}
+
+/// Tool-chip friction law used by the FE cards.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum Friction {
+    /// Pressure-dependent shear friction `tau_f = m0 (1 - exp(-beta P)) k` (paper Eq 17).
+    PressureDependentShear {
+        /// Friction factor m0, dimensionless (0 < m0 <= 1).
+        m0: f64,
+        /// Pressure coefficient beta, 1/Pa.
+        beta_per_pa: f64,
+    },
+    /// Coulomb `tau = mu sigma` (paper Sec 5.1 for 42CrMo4).
+    Coulomb {
+        /// Friction coefficient mu.
+        mu: f64,
+    },
+}
+
+impl Friction {
+    /// Interface shear stress in Pa at contact pressure `pressure_pa` for a workpiece of shear
+    /// strength `shear_strength_pa` (paper Eq 17, or Coulomb).
+    #[must_use]
+    pub fn shear_stress_pa(&self, pressure_pa: f64, shear_strength_pa: f64) -> f64 {
+        match *self {
+            Self::PressureDependentShear { m0, beta_per_pa } => {
+                m0 * (1.0 - (-beta_per_pa * pressure_pa).exp()) * shear_strength_pa
+            }
+            Self::Coulomb { mu } => mu * pressure_pa,
+        }
+    }
+
+    /// Validates the coefficients.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        match *self {
+            Self::PressureDependentShear { m0, beta_per_pa } => {
+                if !(m0.is_finite() && m0 > 0.0 && m0 <= 1.0) {
+                    return Err(ModelError::out_of_range("m0", m0, "0 < m0 <= 1"));
+                }
+                if !(beta_per_pa.is_finite() && beta_per_pa > 0.0) {
+                    return Err(ModelError::out_of_range(
+                        "beta_per_pa",
+                        beta_per_pa,
+                        "beta > 0 1/Pa",
+                    ));
+                }
+            }
+            Self::Coulomb { mu } => {
+                if !(mu.is_finite() && mu >= 0.0 && mu <= 2.0) {
+                    return Err(ModelError::out_of_range("mu", mu, "0 <= mu <= 2"));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The tool-chip interface: friction and heat transfer (paper Sec 5.1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Interface {
+    /// Friction law.
+    pub friction: Friction,
+    /// Heat transfer coefficient, W/(m^2 K) (paper: 10^5 kW/(m^2 K) = 1e8 W/(m^2 K)).
+    pub heat_transfer_w_per_m2_k: f64,
+}
+
+/// Shared test data.
+#[cfg(test)]
+pub(crate) mod tests_support {
+    use super::*;
+
+    /// C38 thermal data of Table 3 (paper), in SI.
+    pub(crate) fn c38() -> Material {
+        let rho = TempPolynomial::new(vec![7.866, -8.465e-4, 1.091e-6, -5.961e-10])
+            .unwrap()
+            .scaled(1e3);
+        let cp = TempPolynomial::new(vec![0.2306, 0.0025, -3.653e-6, 1.707e-9])
+            .unwrap()
+            .scaled(1e3);
+        Material {
+            name: "C38".into(),
+            thermal: ThermalProperties {
+                rho_cp: rho.product(&cp),
+                density: rho,
+                conductivity: TempPolynomial::new(vec![45.1088, -0.0321, 1.645e-5]).unwrap(),
+                valid_from_c: 20.0,
+                valid_to_c: 1200.0,
+            },
+            yield_strength: Some(
+                TempPolynomial::new(vec![773.007, -1.630, 0.0038, -3.001e-6])
+                    .unwrap()
+                    .scaled(1e6),
+            ),
+            melting_c: 1460.0,
+            room_c: 20.0,
+            elastic: None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tests_support::c38;
+    use super::*;
+
+    #[test]
+    fn temperature_inverts_heat_content() {
+        let m = c38();
+        m.validate().unwrap();
+        for t in [25.0, 300.0, 700.0, 1100.0] {
+            let q = m.heat_content_j_per_m3(20.0, t);
+            let back = m.temperature_after_heating(20.0, q).unwrap();
+            assert!((back - t).abs() < 1e-7, "{t} -> {back}");
+        }
+    }
+
+    #[test]
+    fn heat_beyond_melting_is_an_error() {
+        let m = c38();
+        let q = m.heat_content_j_per_m3(20.0, 1460.0) * 1.01;
+        assert!(matches!(
+            m.temperature_after_heating(20.0, q),
+            Err(ModelError::AboveMelting { .. })
+        ));
+        assert!(m.temperature_after_heating(20.0, f64::NAN).is_err());
+    }
+
+    #[test]
+    fn eq17_saturates_at_m0_k() {
+        // Eq 17 with m0 = 1, beta = 0.0045/MPa (paper Sec 5.1): at P = 2000 MPa, 1 - e^-9 = 0.99988.
+        let f = Friction::PressureDependentShear {
+            m0: 1.0,
+            beta_per_pa: 0.0045e-6,
+        };
+        let tau = f.shear_stress_pa(2000e6, 400e6);
+        assert!((tau / 400e6 - (1.0 - (-9.0f64).exp())).abs() < 1e-12);
+    }
+}
