@@ -1,0 +1,282 @@
+//! A cutting-test CSV (`fixtures/tests/*.csv`), one row per test; `#` lines are comments.
+//!
+//! Columns (header names are the contract):
+//! - required: `test`, `speed_m_min`, `uncut_mm`, `width_mm`, `rake_deg`;
+//! - forces, either per unit width `fc_n_per_mm`, `ft_n_per_mm` (N/mm) or totals over the width
+//!   `fc_n`, `ft_n` (N) -- not both kinds in one file;
+//! - optional: `chip_mm`, `edge_radius_um`, `flank_wear_mm`, `order`, `t_int_c`.
+//!
+//! An empty cell means "not measured".
+
+use std::collections::HashSet;
+use std::path::Path;
+
+use cutcal_model::CuttingTest;
+
+use super::{read_text, InputError};
+
+const REQUIRED: [&str; 5] = ["test", "speed_m_min", "uncut_mm", "width_mm", "rake_deg"];
+const OPTIONAL: [&str; 10] = [
+    "fc_n_per_mm",
+    "ft_n_per_mm",
+    "fc_n",
+    "ft_n",
+    "chip_mm",
+    "edge_radius_um",
+    "flank_wear_mm",
+    "order",
+    "t_int_c",
+    "note",
+];
+
+/// Reads and validates a test CSV.
+pub fn load_tests(path: &Path) -> Result<Vec<CuttingTest>, InputError> {
+    let text = read_text(path)?;
+    parse_tests(path, &text)
+}
+
+/// Parses test CSV text (`path` is only used in messages).
+pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputError> {
+    let mut rdr = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .flexible(false)
+        .from_reader(text.as_bytes());
+    let csv_err = |e: csv::Error| {
+        let line = e.position().map(|p| p.line() as usize);
+        InputError::new(path, line, "(csv)", "", e.to_string())
+    };
+    let headers = rdr.headers().map_err(csv_err)?.clone();
+    let header_line = text
+        .lines()
+        .position(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty())
+        .map(|i| i + 1);
+    for h in headers.iter() {
+        if !REQUIRED.contains(&h) && !OPTIONAL.contains(&h) {
+            return Err(InputError::new(
+                path,
+                header_line,
+                h,
+                "",
+                format!("unknown column; expected {REQUIRED:?} and optionally {OPTIONAL:?}"),
+            ));
+        }
+    }
+    for r in REQUIRED {
+        if !headers.iter().any(|h| h == r) {
+            return Err(InputError::new(
+                path,
+                header_line,
+                r,
+                "",
+                "required column is missing",
+            ));
+        }
+    }
+    let per_mm = headers
+        .iter()
+        .any(|h| h == "fc_n_per_mm" || h == "ft_n_per_mm");
+    let totals = headers.iter().any(|h| h == "fc_n" || h == "ft_n");
+    if per_mm && totals {
+        return Err(InputError::new(path, header_line, "fc_n", "", "give forces either per unit width (fc_n_per_mm, ft_n_per_mm) or as totals (fc_n, ft_n), not both"));
+    }
+    let col = |name: &str| headers.iter().position(|h| h == name);
+    let mut tests = Vec::new();
+    let mut seen = HashSet::new();
+    for rec in rdr.records() {
+        let rec = rec.map_err(csv_err)?;
+        let line = rec.position().map(|p| p.line() as usize);
+        let cell = |name: &str| col(name).and_then(|i| rec.get(i)).unwrap_or("");
+        let num = |name: &str, required: bool| -> Result<Option<f64>, InputError> {
+            let s = cell(name);
+            if s.is_empty() {
+                return if required {
+                    Err(InputError::new(path, line, name, s, "a value is required"))
+                } else {
+                    Ok(None)
+                };
+            }
+            let v: f64 = s
+                .parse()
+                .map_err(|_| InputError::new(path, line, name, s, "not a number"))?;
+            if !v.is_finite() {
+                return Err(InputError::new(
+                    path,
+                    line,
+                    name,
+                    s,
+                    "must be a finite number",
+                ));
+            }
+            Ok(Some(v))
+        };
+        let id = cell("test").to_string();
+        if id.is_empty() {
+            return Err(InputError::new(
+                path,
+                line,
+                "test",
+                "",
+                "a test id is required",
+            ));
+        }
+        if !seen.insert(id.clone()) {
+            return Err(InputError::new(
+                path,
+                line,
+                "test",
+                &id,
+                "duplicate test id",
+            ));
+        }
+        let located = |field: &'static str, value: Option<f64>| {
+            let v = value.map(|v| v.to_string()).unwrap_or_default();
+            move |e: cutcal_model::ModelError| InputError::new(path, line, field, &v, e.to_string())
+        };
+        let speed = num("speed_m_min", true)?.unwrap_or_default();
+        let uncut = num("uncut_mm", true)?.unwrap_or_default();
+        let width = num("width_mm", true)?.unwrap_or_default();
+        let rake = num("rake_deg", true)?.unwrap_or_default();
+        let mut t = CuttingTest::new(
+            id,
+            speed / 60.0,
+            uncut * 1e-3,
+            width * 1e-3,
+            rake.to_radians(),
+        )
+        .map_err(|e| {
+            let (field, value) = match &e {
+                cutcal_model::ModelError::OutOfRange { field, .. }
+                    if field.starts_with("speed") =>
+                {
+                    ("speed_m_min", speed)
+                }
+                cutcal_model::ModelError::OutOfRange { field, .. }
+                    if field.starts_with("uncut") =>
+                {
+                    ("uncut_mm", uncut)
+                }
+                cutcal_model::ModelError::OutOfRange { field, .. }
+                    if field.starts_with("width") =>
+                {
+                    ("width_mm", width)
+                }
+                _ => ("rake_deg", rake),
+            };
+            InputError::new(path, line, field, value, e.to_string())
+        })?;
+        let (fc, ft, fc_name, ft_name) = if totals {
+            // Totals over the width: N / (w in m) = N/m.
+            let w = t.width_m;
+            (
+                num("fc_n", false)?.map(|f| f / w),
+                num("ft_n", false)?.map(|f| f / w),
+                "fc_n",
+                "ft_n",
+            )
+        } else {
+            (
+                num("fc_n_per_mm", false)?.map(|f| f * 1e3),
+                num("ft_n_per_mm", false)?.map(|f| f * 1e3),
+                "fc_n_per_mm",
+                "ft_n_per_mm",
+            )
+        };
+        t = t
+            .with_forces(fc, None)
+            .map_err(located(fc_name, num(fc_name, false)?))?;
+        t = t
+            .with_forces(fc, ft)
+            .map_err(located(ft_name, num(ft_name, false)?))?;
+        let chip = num("chip_mm", false)?;
+        t = t
+            .with_chip_thickness(chip.map(|c| c * 1e-3))
+            .map_err(located("chip_mm", chip))?;
+        let tint = num("t_int_c", false)?;
+        t = t
+            .with_interface_temperature(tint)
+            .map_err(located("t_int_c", tint))?;
+        let re = num("edge_radius_um", false)?;
+        let vb = num("flank_wear_mm", false)?;
+        t = t
+            .with_tool_condition(re.map(|r| r * 1e-6), None)
+            .map_err(located("edge_radius_um", re))?;
+        t = t
+            .with_tool_condition(re.map(|r| r * 1e-6), vb.map(|v| v * 1e-3))
+            .map_err(located("flank_wear_mm", vb))?;
+        if let Some(o) = num("order", false)? {
+            if o < 0.0 || o.fract() != 0.0 || o > 1e9 {
+                return Err(InputError::new(
+                    path,
+                    line,
+                    "order",
+                    o,
+                    "must be a non-negative whole number",
+                ));
+            }
+            t.order = Some(o as u32);
+        }
+        tests.push(t);
+    }
+    if tests.is_empty() {
+        return Err(InputError::new(
+            path,
+            header_line,
+            "(rows)",
+            "",
+            "no test rows",
+        ));
+    }
+    Ok(tests)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Vec<CuttingTest>, InputError> {
+        parse_tests(Path::new("t.csv"), text)
+    }
+
+    #[test]
+    fn reads_c38_fixture_with_units() {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/tests/c38.csv");
+        let tests = load_tests(&p).unwrap();
+        assert_eq!(tests.len(), 5);
+        let t3 = &tests[2];
+        // Paper Table 2/6: 240 m/min = 4 m/s, 224 N/mm = 224e3 N/m, 0.157 mm.
+        assert!((t3.speed_m_per_s - 4.0).abs() < 1e-12);
+        assert!((t3.measured.cutting_force_n_per_m.unwrap() - 224e3).abs() < 1e-9);
+        assert!((t3.measured.chip_thickness_m.unwrap() - 0.157e-3).abs() < 1e-15);
+        assert!(tests[0].measured.cutting_force_n_per_m.is_none());
+    }
+
+    #[test]
+    fn totals_are_divided_by_width() {
+        let t = parse(
+            "test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n,ft_n\n1,200,0.15,1.6,-7,610,450\n",
+        )
+        .unwrap();
+        // 610 N over 1.6 mm = 381.25 N/mm.
+        assert!((t[0].measured.cutting_force_n_per_m.unwrap() - 381_250.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn errors_are_located() {
+        let e =
+            parse("test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm\n1,200,0.15,1.6,0,-5\n")
+                .unwrap_err();
+        assert_eq!(
+            (e.line, e.field.as_str(), e.value.as_str()),
+            (Some(2), "fc_n_per_mm", "-5")
+        );
+        let e = parse("test,speed_m_min,uncut_mm,rake_deg\n1,200,0.15,0\n").unwrap_err();
+        assert_eq!(e.field, "width_mm");
+        let e =
+            parse("test,speed_m_min,uncut_mm,width_mm,rake_deg\n1,200,0.15,1,0\n1,100,0.1,1,0\n")
+                .unwrap_err();
+        assert_eq!((e.line, e.field.as_str()), (Some(3), "test"));
+        let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg\n1,NaN,0.15,1,0\n").unwrap_err();
+        assert_eq!(e.field, "speed_m_min");
+    }
+}
