@@ -7,12 +7,8 @@ use cutcal_model::{Material, TempPolynomial, ThermalProperties};
 
 fn c38() -> Material {
     // Table 3 (paper), C38, SI.
-    let rho = TempPolynomial::new(vec![7.866, -8.465e-4, 1.091e-6, -5.961e-10])
-        .unwrap()
-        .scaled(1e3);
-    let cp = TempPolynomial::new(vec![0.2306, 0.0025, -3.653e-6, 1.707e-9])
-        .unwrap()
-        .scaled(1e3);
+    let rho = TempPolynomial::new(vec![7.866, -8.465e-4, 1.091e-6, -5.961e-10]).unwrap().scaled(1e3);
+    let cp = TempPolynomial::new(vec![0.2306, 0.0025, -3.653e-6, 1.707e-9]).unwrap().scaled(1e3);
     Material {
         name: "C38".into(),
         thermal: ThermalProperties {
@@ -22,11 +18,7 @@ fn c38() -> Material {
             valid_from_c: 20.0,
             valid_to_c: 1200.0,
         },
-        yield_strength: Some(
-            TempPolynomial::new(vec![773.007, -1.630, 0.0038, -3.001e-6])
-                .unwrap()
-                .scaled(1e6),
-        ),
+        yield_strength: Some(TempPolynomial::new(vec![773.007, -1.630, 0.0038, -3.001e-6]).unwrap().scaled(1e6)),
         melting_c: 1460.0,
         room_c: 20.0,
         elastic: None,
@@ -41,15 +33,7 @@ fn bench(c: &mut Criterion) {
         shear_angle_rad: (0.075f64 / 0.157).atan(),
         tau_max_pa: 700.9e6,
     };
-    let cfg = DpzdConfig::new(
-        1e-4,
-        4.0,
-        DpzdVariant::Enhanced {
-            tolerance_c: 1e-6,
-            max_iterations: 50,
-        },
-    )
-    .unwrap();
+    let cfg = DpzdConfig::new(1e-4, 4.0, DpzdVariant::Enhanced { tolerance_c: 1e-6, max_iterations: 50 }).unwrap();
     c.bench_function("dpzd_enhanced_solve_c38_test3", |b| {
         b.iter(|| dpzd::solve(black_box(&m), black_box(&state), &cfg).unwrap())
     });

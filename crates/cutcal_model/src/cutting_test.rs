@@ -61,28 +61,12 @@ impl CuttingTest {
         width_m: f64,
         rake_rad: f64,
     ) -> Result<Self, ModelError> {
-        check_range(
-            "speed_m_per_s",
-            speed_m_per_s,
-            0.0,
-            200.0,
-            "0 < V <= 200 m/s",
-        )?;
-        check_range(
-            "uncut_chip_thickness_m",
-            uncut_chip_thickness_m,
-            0.0,
-            5e-3,
-            "0 < t_u <= 5e-3 m",
-        )?;
+        check_range("speed_m_per_s", speed_m_per_s, 0.0, 200.0, "0 < V <= 200 m/s")?;
+        check_range("uncut_chip_thickness_m", uncut_chip_thickness_m, 0.0, 5e-3, "0 < t_u <= 5e-3 m")?;
         check_range("width_m", width_m, 0.0, 1.0, "0 < w <= 1 m")?;
         let lim = 45f64.to_radians();
         if !(rake_rad.is_finite() && rake_rad > -lim && rake_rad < lim) {
-            return Err(ModelError::out_of_range(
-                "rake_rad",
-                rake_rad,
-                "-45 deg < alpha < 45 deg",
-            ));
+            return Err(ModelError::out_of_range("rake_rad", rake_rad, "-45 deg < alpha < 45 deg"));
         }
         Ok(Self {
             id: id.into(),
@@ -98,11 +82,7 @@ impl CuttingTest {
     }
 
     /// Sets the measured forces per unit width (N/m); each must be positive and below 1e7 N/m.
-    pub fn with_forces(
-        mut self,
-        cutting_n_per_m: Option<f64>,
-        feed_n_per_m: Option<f64>,
-    ) -> Result<Self, ModelError> {
+    pub fn with_forces(mut self, cutting_n_per_m: Option<f64>, feed_n_per_m: Option<f64>) -> Result<Self, ModelError> {
         if let Some(fc) = cutting_n_per_m {
             check_range("cutting_force_n_per_m", fc, 0.0, 1e7, "0 < Fc <= 1e7 N/m")?;
         }
@@ -118,11 +98,7 @@ impl CuttingTest {
     pub fn with_chip_thickness(mut self, chip_m: Option<f64>) -> Result<Self, ModelError> {
         if let Some(tc) = chip_m {
             check_range("chip_thickness_m", tc, 0.0, 0.05, "0 < t_c <= 0.05 m")?;
-            crate::kinematics::shear_angle_from_chip(
-                self.uncut_chip_thickness_m,
-                tc,
-                self.rake_rad,
-            )?;
+            crate::kinematics::shear_angle_from_chip(self.uncut_chip_thickness_m, tc, self.rake_rad)?;
         }
         self.measured.chip_thickness_m = chip_m;
         Ok(self)
@@ -131,13 +107,7 @@ impl CuttingTest {
     /// Sets the measured tool-chip interface temperature, degC.
     pub fn with_interface_temperature(mut self, t_c: Option<f64>) -> Result<Self, ModelError> {
         if let Some(t) = t_c {
-            check_range(
-                "interface_temperature_c",
-                t,
-                -273.15,
-                5000.0,
-                "-273.15 < T <= 5000 degC",
-            )?;
+            check_range("interface_temperature_c", t, -273.15, 5000.0, "-273.15 < T <= 5000 degC")?;
         }
         self.measured.interface_temperature_c = t_c;
         Ok(self)
@@ -151,20 +121,12 @@ impl CuttingTest {
     ) -> Result<Self, ModelError> {
         if let Some(r) = edge_radius_m {
             if !(r.is_finite() && (0.0..=1e-3).contains(&r)) {
-                return Err(ModelError::out_of_range(
-                    "edge_radius_m",
-                    r,
-                    "0 <= r_e <= 1e-3 m",
-                ));
+                return Err(ModelError::out_of_range("edge_radius_m", r, "0 <= r_e <= 1e-3 m"));
             }
         }
         if let Some(vb) = flank_wear_m {
             if !(vb.is_finite() && (0.0..=2e-3).contains(&vb)) {
-                return Err(ModelError::out_of_range(
-                    "flank_wear_m",
-                    vb,
-                    "0 <= VB <= 2e-3 m",
-                ));
+                return Err(ModelError::out_of_range("flank_wear_m", vb, "0 <= VB <= 2e-3 m"));
             }
         }
         self.edge_radius_m = edge_radius_m;

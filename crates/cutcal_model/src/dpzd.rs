@@ -53,13 +53,7 @@ pub struct DpzdConfig {
 impl DpzdConfig {
     /// Validating constructor: `0 < h <= 1 mm`, `0 < r <= 20`, positive rho*Cp / tolerance, cap >= 1.
     pub fn new(zone_thickness_m: f64, r: f64, variant: DpzdVariant) -> Result<Self, ModelError> {
-        crate::error::check_range(
-            "zone_thickness_m",
-            zone_thickness_m,
-            0.0,
-            1e-3,
-            "0 < h <= 1e-3 m",
-        )?;
+        crate::error::check_range("zone_thickness_m", zone_thickness_m, 0.0, 1e-3, "0 < h <= 1e-3 m")?;
         crate::error::check_range("r", r, 0.0, 20.0, "0 < r <= 20")?;
         match variant {
             DpzdVariant::Original { rho_cp_j_per_m3_k } => {
@@ -71,31 +65,14 @@ impl DpzdConfig {
                     "1e5 < rho*Cp <= 1e8 J/(m^3 K)",
                 )?;
             }
-            DpzdVariant::Enhanced {
-                tolerance_c,
-                max_iterations,
-            } => {
-                crate::error::check_range(
-                    "tolerance_c",
-                    tolerance_c,
-                    0.0,
-                    10.0,
-                    "0 < tol <= 10 K",
-                )?;
+            DpzdVariant::Enhanced { tolerance_c, max_iterations } => {
+                crate::error::check_range("tolerance_c", tolerance_c, 0.0, 10.0, "0 < tol <= 10 K")?;
                 if max_iterations == 0 || max_iterations > 10_000 {
-                    return Err(ModelError::out_of_range(
-                        "max_iterations",
-                        max_iterations as f64,
-                        "1..=10000",
-                    ));
+                    return Err(ModelError::out_of_range("max_iterations", max_iterations as f64, "1..=10000"));
                 }
             }
         }
-        Ok(Self {
-            zone_thickness_m,
-            r,
-            variant,
-        })
+        Ok(Self { zone_thickness_m, r, variant })
     }
 }
 
@@ -123,27 +100,12 @@ impl ShearPlaneState {
                 test.id
             ))
         };
-        let fc = test
-            .measured
-            .cutting_force_n_per_m
-            .ok_or_else(|| missing("cutting force"))?;
-        let ft = test
-            .measured
-            .feed_force_n_per_m
-            .ok_or_else(|| missing("feed force"))?;
-        let tc = test
-            .measured
-            .chip_thickness_m
-            .ok_or_else(|| missing("chip thickness"))?;
-        let phi =
-            kinematics::shear_angle_from_chip(test.uncut_chip_thickness_m, tc, test.rake_rad)?;
+        let fc = test.measured.cutting_force_n_per_m.ok_or_else(|| missing("cutting force"))?;
+        let ft = test.measured.feed_force_n_per_m.ok_or_else(|| missing("feed force"))?;
+        let tc = test.measured.chip_thickness_m.ok_or_else(|| missing("chip thickness"))?;
+        let phi = kinematics::shear_angle_from_chip(test.uncut_chip_thickness_m, tc, test.rake_rad)?;
         let tau_max_pa = kinematics::tau_max_from_forces(fc, ft, phi, test.uncut_chip_thickness_m)?;
-        Ok(Self {
-            speed_m_per_s: test.speed_m_per_s,
-            rake_rad: test.rake_rad,
-            shear_angle_rad: phi,
-            tau_max_pa,
-        })
+        Ok(Self { speed_m_per_s: test.speed_m_per_s, rake_rad: test.rake_rad, shear_angle_rad: phi, tau_max_pa })
     }
 }
 
@@ -215,11 +177,7 @@ pub struct ZoneSolution {
 ///
 /// Returns an error if the material has no yield law, `tau_max` does not exceed the entry shear
 /// strength, a temperature reaches melting, or the fixed point does not converge within its cap.
-pub fn solve(
-    material: &Material,
-    state: &ShearPlaneState,
-    config: &DpzdConfig,
-) -> Result<ZoneSolution, ModelError> {
+pub fn solve(material: &Material, state: &ShearPlaneState, config: &DpzdConfig) -> Result<ZoneSolution, ModelError> {
     let h = config.zone_thickness_m;
     let r = config.r;
     let phi = state.shear_angle_rad;
@@ -237,9 +195,7 @@ pub fn solve(
     }
     let heat = match config.variant {
         DpzdVariant::Original { rho_cp_j_per_m3_k } => HeatCapacity::Constant { rho_cp_j_per_m3_k },
-        DpzdVariant::Enhanced { .. } => HeatCapacity::Polynomial {
-            rho_cp: material.thermal.rho_cp.clone(),
-        },
+        DpzdVariant::Enhanced { .. } => HeatCapacity::Polynomial { rho_cp: material.thermal.rho_cp.clone() },
     };
     let mut sol = ZoneSolution {
         config: *config,
@@ -260,22 +216,17 @@ pub fn solve(
     };
     match config.variant {
         DpzdVariant::Original { .. } => {
-            sol.t_ef_c =
-                sol.temperature_from_work(sol.total_work_j_per_m3(), "exit (EF) temperature")?;
+            sol.t_ef_c = sol.temperature_from_work(sol.total_work_j_per_m3(), "exit (EF) temperature")?;
             sol.exit_temperature_history_c.push(sol.t_ef_c);
         }
-        DpzdVariant::Enhanced {
-            tolerance_c,
-            max_iterations,
-        } => {
+        DpzdVariant::Enhanced { tolerance_c, max_iterations } => {
             // Sec 3.5: start from T* = Tr, update tau0(T*) at EF, recompute T, repeat.
             let mut t_star = room;
             let mut converged = false;
             let mut last_change = f64::INFINITY;
             for it in 1..=max_iterations {
                 sol.tau0_ef_pa = material.yield_strength_pa(t_star)? / 3f64.sqrt();
-                let t_new =
-                    sol.temperature_from_work(sol.total_work_j_per_m3(), "exit (EF) temperature")?;
+                let t_new = sol.temperature_from_work(sol.total_work_j_per_m3(), "exit (EF) temperature")?;
                 sol.exit_temperature_history_c.push(t_new);
                 last_change = (t_new - t_star).abs();
                 t_star = t_new;
@@ -294,12 +245,10 @@ pub fn solve(
                 });
             }
             sol.tau0_ef_pa = material.yield_strength_pa(t_star)? / 3f64.sqrt();
-            sol.t_ef_c =
-                sol.temperature_from_work(sol.total_work_j_per_m3(), "exit (EF) temperature")?;
+            sol.t_ef_c = sol.temperature_from_work(sol.total_work_j_per_m3(), "exit (EF) temperature")?;
         }
     }
-    sol.t_ab_c =
-        sol.temperature_from_work(sol.work_j_per_m3(0.0), "shear-plane (AB) temperature")?;
+    sol.t_ab_c = sol.temperature_from_work(sol.work_j_per_m3(0.0), "shear-plane (AB) temperature")?;
     Ok(sol)
 }
 
@@ -313,11 +262,7 @@ impl ZoneSolution {
     #[must_use]
     pub fn tau_pa(&self, x_m: f64) -> f64 {
         let u = kinematics::distance_to_boundary(x_m, self.config.zone_thickness_m);
-        let tau0 = if x_m >= 0.0 {
-            self.tau0_cd_pa
-        } else {
-            self.tau0_ef_pa
-        };
+        let tau0 = if x_m >= 0.0 { self.tau0_cd_pa } else { self.tau0_ef_pa };
         tau0 + (self.state.tau_max_pa - tau0) * u
     }
 
@@ -329,9 +274,8 @@ impl ZoneSolution {
         let r = self.config.r;
         let k = self.strain_scale();
         let tm = self.state.tau_max_pa;
-        let half = |tau0: f64, u: f64| {
-            k * (tau0 * u.powf(r + 1.0) / (r + 1.0) + (tm - tau0) * u.powf(r + 2.0) / (r + 2.0))
-        };
+        let half =
+            |tau0: f64, u: f64| k * (tau0 * u.powf(r + 1.0) / (r + 1.0) + (tm - tau0) * u.powf(r + 2.0) / (r + 2.0));
         let u = kinematics::distance_to_boundary(x_m, self.config.zone_thickness_m);
         if x_m >= 0.0 {
             half(self.tau0_cd_pa, u)
@@ -364,27 +308,16 @@ impl ZoneSolution {
                     room_c: self.room_c,
                     elastic: None,
                 };
-                m.temperature_after_heating(self.room_c, work)
-                    .map_err(|e| match e {
-                        ModelError::AboveMelting {
-                            temperature_c,
-                            melting_c,
-                            ..
-                        } => ModelError::AboveMelting {
-                            what: what.into(),
-                            temperature_c,
-                            melting_c,
-                        },
-                        other => other,
-                    })?
+                m.temperature_after_heating(self.room_c, work).map_err(|e| match e {
+                    ModelError::AboveMelting { temperature_c, melting_c, .. } => {
+                        ModelError::AboveMelting { what: what.into(), temperature_c, melting_c }
+                    }
+                    other => other,
+                })?
             }
         };
         if t >= self.melting_c || t.is_nan() {
-            return Err(ModelError::AboveMelting {
-                what: what.into(),
-                temperature_c: t,
-                melting_c: self.melting_c,
-            });
+            return Err(ModelError::AboveMelting { what: what.into(), temperature_c: t, melting_c: self.melting_c });
         }
         Ok(t)
     }
@@ -417,18 +350,14 @@ impl ZoneSolution {
     /// the strain rate vanishes there). These are the points of the Eq 15 objective.
     pub fn interior_points(&self, n: usize) -> Result<Vec<ZonePoint>, ModelError> {
         let h = self.config.zone_thickness_m;
-        (1..=n)
-            .map(|k| self.point(-h / 2.0 + k as f64 * h / (n as f64 + 1.0)))
-            .collect()
+        (1..=n).map(|k| self.point(-h / 2.0 + k as f64 * h / (n as f64 + 1.0))).collect()
     }
 
     /// `n` evenly spaced points including both ends (for plots and field CSVs).
     pub fn profile(&self, n: usize) -> Result<Vec<ZonePoint>, ModelError> {
         let h = self.config.zone_thickness_m;
         let n = n.max(2);
-        (0..n)
-            .map(|k| self.point(-h / 2.0 + k as f64 * h / (n as f64 - 1.0)))
-            .collect()
+        (0..n).map(|k| self.point(-h / 2.0 + k as f64 * h / (n as f64 - 1.0))).collect()
     }
 }
 
@@ -449,26 +378,11 @@ mod tests {
     }
 
     fn enhanced() -> DpzdConfig {
-        DpzdConfig::new(
-            1e-4,
-            4.0,
-            DpzdVariant::Enhanced {
-                tolerance_c: 1e-6,
-                max_iterations: 50,
-            },
-        )
-        .unwrap()
+        DpzdConfig::new(1e-4, 4.0, DpzdVariant::Enhanced { tolerance_c: 1e-6, max_iterations: 50 }).unwrap()
     }
 
     fn original() -> DpzdConfig {
-        DpzdConfig::new(
-            1e-4,
-            4.0,
-            DpzdVariant::Original {
-                rho_cp_j_per_m3_k: 3.5325e6,
-            },
-        )
-        .unwrap()
+        DpzdConfig::new(1e-4, 4.0, DpzdVariant::Original { rho_cp_j_per_m3_k: 3.5325e6 }).unwrap()
     }
 
     #[test]
@@ -490,12 +404,7 @@ mod tests {
         let e = solve(&c38(), &s, &enhanced()).unwrap();
         let o = solve(&c38(), &s, &original()).unwrap();
         assert!(e.iterations <= 8, "{} iterations", e.iterations);
-        assert!(
-            e.t_ef_c < o.t_ef_c,
-            "enhanced {} vs original {}",
-            e.t_ef_c,
-            o.t_ef_c
-        );
+        assert!(e.t_ef_c < o.t_ef_c, "enhanced {} vs original {}", e.t_ef_c, o.t_ef_c);
         // Thermal softening at EF (Fig 4): exit strength well below the entry strength.
         assert!(e.tau0_ef_pa < 0.8 * e.tau0_cd_pa);
     }

@@ -18,7 +18,9 @@ pub enum ModelError {
     #[error("{0}")]
     Inconsistent(String),
     /// A temperature reached or exceeded the melting temperature.
-    #[error("temperature {what} reached {temperature_c:.1} degC, at or above the melting temperature {melting_c:.1} degC")]
+    #[error(
+        "temperature {what} reached {temperature_c:.1} degC, at or above the melting temperature {melting_c:.1} degC"
+    )]
     AboveMelting {
         /// Which temperature (e.g. `exit (EF) temperature`).
         what: String,
@@ -28,7 +30,9 @@ pub enum ModelError {
         melting_c: f64,
     },
     /// An iteration hit its cap without meeting its tolerance.
-    #[error("{what} did not converge in {iterations} iterations (last change {last_change:e}, tolerance {tolerance:e})")]
+    #[error(
+        "{what} did not converge in {iterations} iterations (last change {last_change:e}, tolerance {tolerance:e})"
+    )]
     NoConvergence {
         /// Which loop.
         what: String,
@@ -56,22 +60,12 @@ pub enum ModelError {
 impl ModelError {
     /// Shorthand for [`ModelError::OutOfRange`].
     pub fn out_of_range(field: impl Into<String>, value: f64, rule: impl Into<String>) -> Self {
-        Self::OutOfRange {
-            field: field.into(),
-            value,
-            rule: rule.into(),
-        }
+        Self::OutOfRange { field: field.into(), value, rule: rule.into() }
     }
 }
 
 /// Checks that `value` is finite and `lo < value <= hi` (open at `lo` when `open_lo`).
-pub(crate) fn check_range(
-    field: &str,
-    value: f64,
-    lo: f64,
-    hi: f64,
-    rule: &str,
-) -> Result<f64, ModelError> {
+pub(crate) fn check_range(field: &str, value: f64, lo: f64, hi: f64, rule: &str) -> Result<f64, ModelError> {
     if value.is_finite() && value > lo && value <= hi {
         Ok(value)
     } else {

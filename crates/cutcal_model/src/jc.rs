@@ -58,16 +58,7 @@ impl JcParams {
         tm_c: f64,
         tr_c: f64,
     ) -> Result<Self, ModelError> {
-        let jc = Self {
-            a_pa,
-            b_pa,
-            n,
-            c,
-            m,
-            eps0_per_s,
-            tm_c,
-            tr_c,
-        };
+        let jc = Self { a_pa, b_pa, n, c, m, eps0_per_s, tm_c, tr_c };
         jc.validate()?;
         Ok(jc)
     }
@@ -102,11 +93,7 @@ impl JcParams {
             return Err(ModelError::out_of_range("m", self.m, "0 < m <= 10"));
         }
         if self.eps0_per_s <= 0.0 {
-            return Err(ModelError::out_of_range(
-                "eps0_per_s",
-                self.eps0_per_s,
-                "eps0 > 0 1/s",
-            ));
+            return Err(ModelError::out_of_range("eps0_per_s", self.eps0_per_s, "eps0 > 0 1/s"));
         }
         if self.tm_c <= self.tr_c {
             return Err(ModelError::Inconsistent(format!(
@@ -152,11 +139,7 @@ impl JcParams {
     /// Derivative of the flow stress with respect to strain (Pa).
     #[must_use]
     pub fn d_strain(&self, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> f64 {
-        let dh = if strain > 0.0 {
-            self.b_pa * self.n * strain.powf(self.n - 1.0)
-        } else {
-            0.0
-        };
+        let dh = if strain > 0.0 { self.b_pa * self.n * strain.powf(self.n - 1.0) } else { 0.0 };
         dh * self.rate_factor(strain_rate_per_s) * self.softening(temperature_c)
     }
 
@@ -188,11 +171,7 @@ impl JcParams {
         let theta = self.homologous(temperature_c);
         let tm = theta.powf(self.m);
         let g = 1.0 - tm;
-        let d_n = if strain > 0.0 {
-            self.b_pa * en * strain.ln()
-        } else {
-            0.0
-        };
+        let d_n = if strain > 0.0 { self.b_pa * en * strain.ln() } else { 0.0 };
         let d_m = if theta > 0.0 { -tm * theta.ln() } else { 0.0 };
         [rf * g, en * rf * g, d_n * rf * g, h * lnr * g, h * rf * d_m]
     }

@@ -73,15 +73,8 @@ pub fn gamma_ab(shear_angle_rad: f64, rake_rad: f64) -> f64 {
 ///
 /// **Source:** paper Eq 3. `speed_m_per_s` V, `zone_thickness_m` h, exponent `r`.
 #[must_use]
-pub fn gamma_dot_ab(
-    speed_m_per_s: f64,
-    zone_thickness_m: f64,
-    r: f64,
-    shear_angle_rad: f64,
-    rake_rad: f64,
-) -> f64 {
-    speed_m_per_s * (r + 1.0) / zone_thickness_m * rake_rad.cos()
-        / (shear_angle_rad - rake_rad).cos()
+pub fn gamma_dot_ab(speed_m_per_s: f64, zone_thickness_m: f64, r: f64, shear_angle_rad: f64, rake_rad: f64) -> f64 {
+    speed_m_per_s * (r + 1.0) / zone_thickness_m * rake_rad.cos() / (shear_angle_rad - rake_rad).cos()
 }
 
 /// The normalised distance `u` from the nearer boundary toward AB: `u = 1 - 2|x|/h`, in [0, 1].

@@ -32,21 +32,15 @@ impl ThermalProperties {
 
     /// Checks that rho*Cp, rho and K are positive over the stated range (sampled every 10 K).
     pub fn validate(&self, material: &str) -> Result<(), ModelError> {
-        if !(self.valid_from_c.is_finite()
-            && self.valid_to_c.is_finite()
-            && self.valid_from_c < self.valid_to_c)
-        {
+        if !(self.valid_from_c.is_finite() && self.valid_to_c.is_finite() && self.valid_from_c < self.valid_to_c) {
             return Err(ModelError::Inconsistent(format!(
                 "{material}: thermal validity range [{}, {}] degC is empty or not finite",
                 self.valid_from_c, self.valid_to_c
             )));
         }
-        let steps = ((self.valid_to_c - self.valid_from_c) / 10.0)
-            .ceil()
-            .max(1.0) as usize;
+        let steps = ((self.valid_to_c - self.valid_from_c) / 10.0).ceil().max(1.0) as usize;
         for i in 0..=steps {
-            let t =
-                self.valid_from_c + (self.valid_to_c - self.valid_from_c) * i as f64 / steps as f64;
+            let t = self.valid_from_c + (self.valid_to_c - self.valid_from_c) * i as f64 / steps as f64;
             for (name, v) in [
                 ("rho_cp", self.rho_cp.value(t)),
                 ("density", self.density.value(t)),
@@ -105,18 +99,10 @@ impl Material {
         self.thermal.validate(&self.name)?;
         if let Some(e) = self.elastic {
             if !(e.youngs_pa.is_finite() && e.youngs_pa > 0.0) {
-                return Err(ModelError::out_of_range(
-                    "youngs_pa",
-                    e.youngs_pa,
-                    "E > 0 Pa",
-                ));
+                return Err(ModelError::out_of_range("youngs_pa", e.youngs_pa, "E > 0 Pa"));
             }
             if !(e.poisson.is_finite() && e.poisson > -1.0 && e.poisson < 0.5) {
-                return Err(ModelError::out_of_range(
-                    "poisson",
-                    e.poisson,
-                    "-1 < nu < 0.5",
-                ));
+                return Err(ModelError::out_of_range("poisson", e.poisson, "-1 < nu < 0.5"));
             }
         }
         Ok(())
@@ -128,10 +114,7 @@ impl Material {
     /// above melting, or the law gives a non-positive value there.
     pub fn yield_strength_pa(&self, temperature_c: f64) -> Result<f64, ModelError> {
         let law = self.yield_strength.as_ref().ok_or_else(|| {
-            ModelError::Inconsistent(format!(
-                "{}: no yield_strength law (needed by the DPZD model)",
-                self.name
-            ))
+            ModelError::Inconsistent(format!("{}: no yield_strength law (needed by the DPZD model)", self.name))
         })?;
         self.check_below_melting("yield strength argument", temperature_c)?;
         let s = law.value(temperature_c);
@@ -149,11 +132,7 @@ impl Material {
     /// Errors if `temperature_c` is NaN or at/above the melting temperature.
     pub fn check_below_melting(&self, what: &str, temperature_c: f64) -> Result<(), ModelError> {
         if temperature_c.is_nan() || temperature_c >= self.melting_c {
-            return Err(ModelError::AboveMelting {
-                what: what.to_string(),
-                temperature_c,
-                melting_c: self.melting_c,
-            });
+            return Err(ModelError::AboveMelting { what: what.to_string(), temperature_c, melting_c: self.melting_c });
         }
         Ok(())
     }
@@ -171,26 +150,17 @@ impl Material {
     /// **Source:** paper Eq 12 integrated along the flow line (adiabatic).
     ///
     /// Returns [`ModelError::AboveMelting`] if the heat would take the material to or past `Tm`.
-    pub fn temperature_after_heating(
-        &self,
-        from_c: f64,
-        heat_j_per_m3: f64,
-    ) -> Result<f64, ModelError> {
+    pub fn temperature_after_heating(&self, from_c: f64, heat_j_per_m3: f64) -> Result<f64, ModelError> {
         check_finite("heat_j_per_m3", heat_j_per_m3)?;
         if heat_j_per_m3 < 0.0 {
-            return Err(ModelError::out_of_range(
-                "heat_j_per_m3",
-                heat_j_per_m3,
-                "heat >= 0 J/m^3",
-            ));
+            return Err(ModelError::out_of_range("heat_j_per_m3", heat_j_per_m3, "heat >= 0 J/m^3"));
         }
         let top = self.melting_c;
         let h_top = self.heat_content_j_per_m3(from_c, top);
         if heat_j_per_m3 >= h_top {
             return Err(ModelError::AboveMelting {
                 what: "adiabatic temperature".into(),
-                temperature_c: top
-                    + (heat_j_per_m3 - h_top) / self.thermal.rho_cp.value(top).max(1.0),
+                temperature_c: top + (heat_j_per_m3 - h_top) / self.thermal.rho_cp.value(top).max(1.0),
                 melting_c: top,
             });
         }
@@ -262,11 +232,7 @@ impl Friction {
                     return Err(ModelError::out_of_range("m0", m0, "0 < m0 <= 1"));
                 }
                 if !(beta_per_pa.is_finite() && beta_per_pa > 0.0) {
-                    return Err(ModelError::out_of_range(
-                        "beta_per_pa",
-                        beta_per_pa,
-                        "beta > 0 1/Pa",
-                    ));
+                    return Err(ModelError::out_of_range("beta_per_pa", beta_per_pa, "beta > 0 1/Pa"));
                 }
             }
             Self::Coulomb { mu } => {
@@ -295,12 +261,8 @@ pub(crate) mod tests_support {
 
     /// C38 thermal data of Table 3 (paper), in SI.
     pub(crate) fn c38() -> Material {
-        let rho = TempPolynomial::new(vec![7.866, -8.465e-4, 1.091e-6, -5.961e-10])
-            .unwrap()
-            .scaled(1e3);
-        let cp = TempPolynomial::new(vec![0.2306, 0.0025, -3.653e-6, 1.707e-9])
-            .unwrap()
-            .scaled(1e3);
+        let rho = TempPolynomial::new(vec![7.866, -8.465e-4, 1.091e-6, -5.961e-10]).unwrap().scaled(1e3);
+        let cp = TempPolynomial::new(vec![0.2306, 0.0025, -3.653e-6, 1.707e-9]).unwrap().scaled(1e3);
         Material {
             name: "C38".into(),
             thermal: ThermalProperties {
@@ -310,11 +272,7 @@ pub(crate) mod tests_support {
                 valid_from_c: 20.0,
                 valid_to_c: 1200.0,
             },
-            yield_strength: Some(
-                TempPolynomial::new(vec![773.007, -1.630, 0.0038, -3.001e-6])
-                    .unwrap()
-                    .scaled(1e6),
-            ),
+            yield_strength: Some(TempPolynomial::new(vec![773.007, -1.630, 0.0038, -3.001e-6]).unwrap().scaled(1e6)),
             melting_c: 1460.0,
             room_c: 20.0,
             elastic: None,
@@ -342,20 +300,14 @@ mod tests {
     fn heat_beyond_melting_is_an_error() {
         let m = c38();
         let q = m.heat_content_j_per_m3(20.0, 1460.0) * 1.01;
-        assert!(matches!(
-            m.temperature_after_heating(20.0, q),
-            Err(ModelError::AboveMelting { .. })
-        ));
+        assert!(matches!(m.temperature_after_heating(20.0, q), Err(ModelError::AboveMelting { .. })));
         assert!(m.temperature_after_heating(20.0, f64::NAN).is_err());
     }
 
     #[test]
     fn eq17_saturates_at_m0_k() {
         // Eq 17 with m0 = 1, beta = 0.0045/MPa (paper Sec 5.1): at P = 2000 MPa, 1 - e^-9 = 0.99988.
-        let f = Friction::PressureDependentShear {
-            m0: 1.0,
-            beta_per_pa: 0.0045e-6,
-        };
+        let f = Friction::PressureDependentShear { m0: 1.0, beta_per_pa: 0.0045e-6 };
         let tau = f.shear_stress_pa(2000e6, 400e6);
         assert!((tau / 400e6 - (1.0 - (-9.0f64).exp())).abs() < 1e-12);
     }

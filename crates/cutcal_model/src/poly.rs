@@ -28,9 +28,7 @@ impl TempPolynomial {
     /// ```
     pub fn new(coefficients: Vec<f64>) -> Result<Self, ModelError> {
         if coefficients.is_empty() {
-            return Err(ModelError::Inconsistent(
-                "a polynomial needs at least one coefficient".into(),
-            ));
+            return Err(ModelError::Inconsistent("a polynomial needs at least one coefficient".into()));
         }
         for (i, c) in coefficients.iter().enumerate() {
             check_finite(&format!("coefficient[{i}]"), *c)?;
@@ -41,9 +39,7 @@ impl TempPolynomial {
     /// A constant polynomial.
     #[must_use]
     pub fn constant(value: f64) -> Self {
-        Self {
-            coefficients: vec![value],
-        }
+        Self { coefficients: vec![value] }
     }
 
     /// The ascending coefficients.
@@ -55,9 +51,7 @@ impl TempPolynomial {
     /// Every coefficient multiplied by `factor` (a unit conversion).
     #[must_use]
     pub fn scaled(&self, factor: f64) -> Self {
-        Self {
-            coefficients: self.coefficients.iter().map(|c| c * factor).collect(),
-        }
+        Self { coefficients: self.coefficients.iter().map(|c| c * factor).collect() }
     }
 
     /// The product of two polynomials (e.g. `rho(T) * Cp(T)`).
@@ -75,33 +69,19 @@ impl TempPolynomial {
     /// Value at `temperature_c` (Horner).
     #[must_use]
     pub fn value(&self, temperature_c: f64) -> f64 {
-        self.coefficients
-            .iter()
-            .rev()
-            .fold(0.0, |acc, c| acc * temperature_c + c)
+        self.coefficients.iter().rev().fold(0.0, |acc, c| acc * temperature_c + c)
     }
 
     /// First derivative with respect to temperature at `temperature_c`.
     #[must_use]
     pub fn derivative(&self, temperature_c: f64) -> f64 {
-        self.coefficients
-            .iter()
-            .enumerate()
-            .skip(1)
-            .rev()
-            .fold(0.0, |acc, (i, c)| acc * temperature_c + c * i as f64)
+        self.coefficients.iter().enumerate().skip(1).rev().fold(0.0, |acc, (i, c)| acc * temperature_c + c * i as f64)
     }
 
     /// The antiderivative `P(T) = sum c_i T^(i+1)/(i+1)`, zero at 0 degC.
     #[must_use]
     pub fn antiderivative(&self, temperature_c: f64) -> f64 {
-        self.coefficients
-            .iter()
-            .enumerate()
-            .rev()
-            .fold(0.0, |acc, (i, c)| {
-                acc * temperature_c + c / (i as f64 + 1.0)
-            })
+        self.coefficients.iter().enumerate().rev().fold(0.0, |acc, (i, c)| acc * temperature_c + c / (i as f64 + 1.0))
             * temperature_c
     }
 

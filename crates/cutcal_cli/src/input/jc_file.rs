@@ -54,17 +54,7 @@ impl JcFile {
 pub fn load_jc(path: &Path) -> Result<JcParams, InputError> {
     let text = read_text(path)?;
     let f: JcFile = parse_toml(path, &text)?;
-    JcParams::new(
-        f.a_mpa * 1e6,
-        f.b_mpa * 1e6,
-        f.n,
-        f.c,
-        f.m,
-        f.eps0_per_s,
-        f.tm_c,
-        f.tr_c,
-    )
-    .map_err(|e| {
+    JcParams::new(f.a_mpa * 1e6, f.b_mpa * 1e6, f.n, f.c, f.m, f.eps0_per_s, f.tm_c, f.tr_c).map_err(|e| {
         let field = match &e {
             cutcal_model::ModelError::OutOfRange { field, .. } => field.replace("_pa", "_mpa"),
             _ => "tm_c".to_string(),
@@ -76,12 +66,6 @@ pub fn load_jc(path: &Path) -> Result<JcParams, InputError> {
             cutcal_model::ModelError::OutOfRange { value, .. } => format!("{value}"),
             _ => String::new(),
         };
-        InputError::new(
-            path,
-            toml_key_line(&text, &field),
-            &field,
-            value,
-            e.to_string(),
-        )
+        InputError::new(path, toml_key_line(&text, &field), &field, value, e.to_string())
     })
 }

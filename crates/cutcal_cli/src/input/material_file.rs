@@ -143,31 +143,19 @@ fn convert(
     units: &[(&str, f64)],
 ) -> Result<TempPolynomial, InputError> {
     let line = toml_key_line(text, field.rsplit('.').next().unwrap_or(field));
-    let factor = units
-        .iter()
-        .find(|(u, _)| *u == law.unit)
-        .map(|(_, f)| *f)
-        .ok_or_else(|| {
-            let allowed: Vec<&str> = units.iter().map(|(u, _)| *u).collect();
-            InputError::new(
-                path,
-                line,
-                &format!("{field}.unit"),
-                &law.unit,
-                format!("unknown unit; expected one of {allowed:?}"),
-            )
-        })?;
-    TempPolynomial::new(law.coefficients.clone())
-        .map(|p| p.scaled(factor))
-        .map_err(|e| {
-            InputError::new(
-                path,
-                line,
-                &format!("{field}.coefficients"),
-                format!("{:?}", law.coefficients),
-                e.to_string(),
-            )
-        })
+    let factor = units.iter().find(|(u, _)| *u == law.unit).map(|(_, f)| *f).ok_or_else(|| {
+        let allowed: Vec<&str> = units.iter().map(|(u, _)| *u).collect();
+        InputError::new(
+            path,
+            line,
+            &format!("{field}.unit"),
+            &law.unit,
+            format!("unknown unit; expected one of {allowed:?}"),
+        )
+    })?;
+    TempPolynomial::new(law.coefficients.clone()).map(|p| p.scaled(factor)).map_err(|e| {
+        InputError::new(path, line, &format!("{field}.coefficients"), format!("{:?}", law.coefficients), e.to_string())
+    })
 }
 
 /// Reads and validates a material file.
@@ -177,34 +165,16 @@ pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
     let text = read_text(path)?;
     let raw: RawMaterial = parse_toml(path, &text)?;
     let t = &raw.thermal;
-    let k = convert(
-        path,
-        &text,
-        "thermal.conductivity",
-        &t.conductivity,
-        &[("W/(m K)", 1.0)],
-    )?;
+    let k = convert(path, &text, "thermal.conductivity", &t.conductivity, &[("W/(m K)", 1.0)])?;
     let density_units = [("g/cm^3", 1e3), ("kg/m^3", 1.0)];
     let (rho_cp, density) = match (&t.rho_cp, &t.density, &t.specific_heat) {
         (Some(rc), Some(d), None) => (
-            convert(
-                path,
-                &text,
-                "thermal.rho_cp",
-                rc,
-                &[("J/(cm^3 K)", 1e6), ("J/(m^3 K)", 1.0)],
-            )?,
+            convert(path, &text, "thermal.rho_cp", rc, &[("J/(cm^3 K)", 1e6), ("J/(m^3 K)", 1.0)])?,
             convert(path, &text, "thermal.density", d, &density_units)?,
         ),
         (None, Some(d), Some(cp)) => {
             let d = convert(path, &text, "thermal.density", d, &density_units)?;
-            let cp = convert(
-                path,
-                &text,
-                "thermal.specific_heat",
-                cp,
-                &[("J/(g K)", 1e3), ("J/(kg K)", 1.0)],
-            )?;
+            let cp = convert(path, &text, "thermal.specific_heat", cp, &[("J/(g K)", 1e3), ("J/(kg K)", 1.0)])?;
             (d.product(&cp), d)
         }
         _ => {
@@ -220,15 +190,7 @@ pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
     let yield_strength = raw
         .yield_strength
         .as_ref()
-        .map(|y| {
-            convert(
-                path,
-                &text,
-                "yield_strength",
-                y,
-                &[("MPa", 1e6), ("Pa", 1.0)],
-            )
-        })
+        .map(|y| convert(path, &text, "yield_strength", y, &[("MPa", 1e6), ("Pa", 1.0)]))
         .transpose()?;
     let material = Material {
         name: raw.name.clone(),
@@ -242,47 +204,27 @@ pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
         yield_strength,
         melting_c: raw.melting_c,
         room_c: raw.room_c,
-        elastic: raw.elastic.as_ref().map(|e| Elastic {
-            youngs_pa: e.youngs_gpa * 1e9,
-            poisson: e.poisson,
-        }),
+        elastic: raw.elastic.as_ref().map(|e| Elastic { youngs_pa: e.youngs_gpa * 1e9, poisson: e.poisson }),
     };
     material.validate().map_err(|e| {
         let field = match &e {
             cutcal_model::ModelError::OutOfRange { field, .. } => field.clone(),
             _ => "material".into(),
         };
-        InputError::new(
-            path,
-            toml_key_line(&text, &field),
-            &field,
-            "",
-            e.to_string(),
-        )
+        InputError::new(path, toml_key_line(&text, &field), &field, "", e.to_string())
     })?;
-    if material.room_c >= material.thermal.valid_to_c
-        || material.thermal.valid_to_c > material.melting_c
-    {
+    if material.room_c >= material.thermal.valid_to_c || material.thermal.valid_to_c > material.melting_c {
         return Err(InputError::new(
             path,
             toml_key_line(&text, "valid_to_c"),
             "thermal.valid_to_c",
             material.thermal.valid_to_c,
-            format!(
-                "must lie in (room_c = {}, melting_c = {}] degC",
-                material.room_c, material.melting_c
-            ),
+            format!("must lie in (room_c = {}, melting_c = {}] degC", material.room_c, material.melting_c),
         ));
     }
     if let Some(d) = &raw.dpzd {
         if !(d.r.is_finite() && d.r > 0.0 && d.r <= 20.0) {
-            return Err(InputError::new(
-                path,
-                toml_key_line(&text, "r"),
-                "dpzd.r",
-                d.r,
-                "must satisfy 0 < r <= 20",
-            ));
+            return Err(InputError::new(path, toml_key_line(&text, "r"), "dpzd.r", d.r, "must satisfy 0 < r <= 20"));
         }
         if !(d.rho_cp_original_j_per_cm3_k.is_finite()
             && d.rho_cp_original_j_per_cm3_k > 0.1
@@ -298,13 +240,7 @@ pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
         }
     }
     if let Some(b) = &raw.bounds {
-        for (name, [lo, hi]) in [
-            ("a_mpa", b.a_mpa),
-            ("b_mpa", b.b_mpa),
-            ("n", b.n),
-            ("c", b.c),
-            ("m", b.m),
-        ] {
+        for (name, [lo, hi]) in [("a_mpa", b.a_mpa), ("b_mpa", b.b_mpa), ("n", b.n), ("c", b.c), ("m", b.m)] {
             if !(lo.is_finite() && hi.is_finite() && lo <= hi && lo >= 0.0) {
                 return Err(InputError::new(
                     path,
@@ -322,21 +258,12 @@ pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
         .map(|i| {
             let friction = match i.friction {
                 RawFriction::PressureDependentShear { m0, beta_per_mpa } => {
-                    Friction::PressureDependentShear {
-                        m0,
-                        beta_per_pa: beta_per_mpa * 1e-6,
-                    }
+                    Friction::PressureDependentShear { m0, beta_per_pa: beta_per_mpa * 1e-6 }
                 }
                 RawFriction::Coulomb { mu } => Friction::Coulomb { mu },
             };
             friction.validate().map_err(|e| {
-                InputError::new(
-                    path,
-                    toml_key_line(&text, "friction"),
-                    "interface.friction",
-                    "",
-                    e.to_string(),
-                )
+                InputError::new(path, toml_key_line(&text, "friction"), "interface.friction", "", e.to_string())
             })?;
             let h = i.heat_transfer_kw_per_m2_k;
             if !(h.is_finite() && h > 0.0) {
@@ -350,10 +277,7 @@ pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
             }
             Ok(InterfaceSection {
                 tool: i.tool.clone(),
-                interface: Interface {
-                    friction,
-                    heat_transfer_w_per_m2_k: h * 1e3,
-                },
+                interface: Interface { friction, heat_transfer_w_per_m2_k: h * 1e3 },
             })
         })
         .transpose()?;
@@ -372,20 +296,12 @@ mod tests {
     use super::*;
 
     fn fixture(name: &str) -> PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../fixtures/materials")
-            .join(name)
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/materials").join(name)
     }
 
     #[test]
     fn loads_every_material_fixture() {
-        for f in [
-            "c38.toml",
-            "42crmo4.toml",
-            "aa6082.toml",
-            "h13a.toml",
-            "aisi1045.toml",
-        ] {
+        for f in ["c38.toml", "42crmo4.toml", "aa6082.toml", "h13a.toml", "aisi1045.toml"] {
             load_material(&fixture(f)).unwrap_or_else(|e| panic!("{e}"));
         }
     }

@@ -60,8 +60,8 @@ impl InputError {
 
 /// Reads a whole file as UTF-8 text with a located error.
 pub(crate) fn read_text(path: &Path) -> Result<String, InputError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| InputError::new(path, None, "(file)", "", format!("cannot read: {e}")))?;
+    let bytes =
+        std::fs::read(path).map_err(|e| InputError::new(path, None, "(file)", "", format!("cannot read: {e}")))?;
     let text = String::from_utf8(bytes).map_err(|e| {
         let upto = &e.as_bytes()[..e.utf8_error().valid_up_to()];
         let line = upto.iter().filter(|b| **b == b'\n').count() + 1;
@@ -74,24 +74,14 @@ pub(crate) fn read_text(path: &Path) -> Result<String, InputError> {
         )
     })?;
     if text.trim().is_empty() {
-        return Err(InputError::new(
-            path,
-            None,
-            "(file)",
-            "",
-            "the file is empty",
-        ));
+        return Err(InputError::new(path, None, "(file)", "", "the file is empty"));
     }
     Ok(text)
 }
 
 /// 1-based line of a byte offset in `text`.
 pub(crate) fn line_of(text: &str, offset: usize) -> usize {
-    text.as_bytes()[..offset.min(text.len())]
-        .iter()
-        .filter(|b| **b == b'\n')
-        .count()
-        + 1
+    text.as_bytes()[..offset.min(text.len())].iter().filter(|b| **b == b'\n').count() + 1
 }
 
 /// Finds the line where `key` is assigned in a TOML text (best effort, for located validation errors).
@@ -105,23 +95,11 @@ pub(crate) fn toml_key_line(text: &str, key: &str) -> Option<usize> {
 }
 
 /// Parses TOML into `T` with a located error.
-pub(crate) fn parse_toml<T: serde::de::DeserializeOwned>(
-    path: &Path,
-    text: &str,
-) -> Result<T, InputError> {
+pub(crate) fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T, InputError> {
     toml::from_str(text).map_err(|e| {
         let line = e.span().map(|s| line_of(text, s.start));
-        let value = e
-            .span()
-            .map(|s| {
-                text[s.clone()]
-                    .lines()
-                    .next()
-                    .unwrap_or("")
-                    .trim()
-                    .to_string()
-            })
-            .unwrap_or_default();
+        let value =
+            e.span().map(|s| text[s.clone()].lines().next().unwrap_or("").trim().to_string()).unwrap_or_default();
         InputError::new(path, line, "(toml)", value, e.message().to_string())
     })
 }

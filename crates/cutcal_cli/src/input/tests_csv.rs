@@ -37,20 +37,15 @@ pub fn load_tests(path: &Path) -> Result<Vec<CuttingTest>, InputError> {
 
 /// Parses test CSV text (`path` is only used in messages).
 pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputError> {
-    let mut rdr = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .flexible(false)
-        .from_reader(text.as_bytes());
+    let mut rdr =
+        csv::ReaderBuilder::new().comment(Some(b'#')).trim(csv::Trim::All).flexible(false).from_reader(text.as_bytes());
     let csv_err = |e: csv::Error| {
         let line = e.position().map(|p| p.line() as usize);
         InputError::new(path, line, "(csv)", "", e.to_string())
     };
     let headers = rdr.headers().map_err(csv_err)?.clone();
-    let header_line = text
-        .lines()
-        .position(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty())
-        .map(|i| i + 1);
+    let header_line =
+        text.lines().position(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty()).map(|i| i + 1);
     for h in headers.iter() {
         if !REQUIRED.contains(&h) && !OPTIONAL.contains(&h) {
             return Err(InputError::new(
@@ -64,21 +59,19 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
     }
     for r in REQUIRED {
         if !headers.iter().any(|h| h == r) {
-            return Err(InputError::new(
-                path,
-                header_line,
-                r,
-                "",
-                "required column is missing",
-            ));
+            return Err(InputError::new(path, header_line, r, "", "required column is missing"));
         }
     }
-    let per_mm = headers
-        .iter()
-        .any(|h| h == "fc_n_per_mm" || h == "ft_n_per_mm");
+    let per_mm = headers.iter().any(|h| h == "fc_n_per_mm" || h == "ft_n_per_mm");
     let totals = headers.iter().any(|h| h == "fc_n" || h == "ft_n");
     if per_mm && totals {
-        return Err(InputError::new(path, header_line, "fc_n", "", "give forces either per unit width (fc_n_per_mm, ft_n_per_mm) or as totals (fc_n, ft_n), not both"));
+        return Err(InputError::new(
+            path,
+            header_line,
+            "fc_n",
+            "",
+            "give forces either per unit width (fc_n_per_mm, ft_n_per_mm) or as totals (fc_n, ft_n), not both",
+        ));
     }
     let col = |name: &str| headers.iter().position(|h| h == name);
     let mut tests = Vec::new();
@@ -96,38 +89,18 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
                     Ok(None)
                 };
             }
-            let v: f64 = s
-                .parse()
-                .map_err(|_| InputError::new(path, line, name, s, "not a number"))?;
+            let v: f64 = s.parse().map_err(|_| InputError::new(path, line, name, s, "not a number"))?;
             if !v.is_finite() {
-                return Err(InputError::new(
-                    path,
-                    line,
-                    name,
-                    s,
-                    "must be a finite number",
-                ));
+                return Err(InputError::new(path, line, name, s, "must be a finite number"));
             }
             Ok(Some(v))
         };
         let id = cell("test").to_string();
         if id.is_empty() {
-            return Err(InputError::new(
-                path,
-                line,
-                "test",
-                "",
-                "a test id is required",
-            ));
+            return Err(InputError::new(path, line, "test", "", "a test id is required"));
         }
         if !seen.insert(id.clone()) {
-            return Err(InputError::new(
-                path,
-                line,
-                "test",
-                &id,
-                "duplicate test id",
-            ));
+            return Err(InputError::new(path, line, "test", &id, "duplicate test id"));
         }
         let located = |field: &'static str, value: Option<f64>| {
             let v = value.map(|v| v.to_string()).unwrap_or_default();
@@ -137,30 +110,13 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
         let uncut = num("uncut_mm", true)?.unwrap_or_default();
         let width = num("width_mm", true)?.unwrap_or_default();
         let rake = num("rake_deg", true)?.unwrap_or_default();
-        let mut t = CuttingTest::new(
-            id,
-            speed / 60.0,
-            uncut * 1e-3,
-            width * 1e-3,
-            rake.to_radians(),
-        )
-        .map_err(|e| {
+        let mut t = CuttingTest::new(id, speed / 60.0, uncut * 1e-3, width * 1e-3, rake.to_radians()).map_err(|e| {
             let (field, value) = match &e {
-                cutcal_model::ModelError::OutOfRange { field, .. }
-                    if field.starts_with("speed") =>
-                {
+                cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("speed") => {
                     ("speed_m_min", speed)
                 }
-                cutcal_model::ModelError::OutOfRange { field, .. }
-                    if field.starts_with("uncut") =>
-                {
-                    ("uncut_mm", uncut)
-                }
-                cutcal_model::ModelError::OutOfRange { field, .. }
-                    if field.starts_with("width") =>
-                {
-                    ("width_mm", width)
-                }
+                cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("uncut") => ("uncut_mm", uncut),
+                cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("width") => ("width_mm", width),
                 _ => ("rake_deg", rake),
             };
             InputError::new(path, line, field, value, e.to_string())
@@ -168,12 +124,7 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
         let (fc, ft, fc_name, ft_name) = if totals {
             // Totals over the width: N / (w in m) = N/m.
             let w = t.width_m;
-            (
-                num("fc_n", false)?.map(|f| f / w),
-                num("ft_n", false)?.map(|f| f / w),
-                "fc_n",
-                "ft_n",
-            )
+            (num("fc_n", false)?.map(|f| f / w), num("ft_n", false)?.map(|f| f / w), "fc_n", "ft_n")
         } else {
             (
                 num("fc_n_per_mm", false)?.map(|f| f * 1e3),
@@ -182,50 +133,26 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
                 "ft_n_per_mm",
             )
         };
-        t = t
-            .with_forces(fc, None)
-            .map_err(located(fc_name, num(fc_name, false)?))?;
-        t = t
-            .with_forces(fc, ft)
-            .map_err(located(ft_name, num(ft_name, false)?))?;
+        t = t.with_forces(fc, None).map_err(located(fc_name, num(fc_name, false)?))?;
+        t = t.with_forces(fc, ft).map_err(located(ft_name, num(ft_name, false)?))?;
         let chip = num("chip_mm", false)?;
-        t = t
-            .with_chip_thickness(chip.map(|c| c * 1e-3))
-            .map_err(located("chip_mm", chip))?;
+        t = t.with_chip_thickness(chip.map(|c| c * 1e-3)).map_err(located("chip_mm", chip))?;
         let tint = num("t_int_c", false)?;
-        t = t
-            .with_interface_temperature(tint)
-            .map_err(located("t_int_c", tint))?;
+        t = t.with_interface_temperature(tint).map_err(located("t_int_c", tint))?;
         let re = num("edge_radius_um", false)?;
         let vb = num("flank_wear_mm", false)?;
-        t = t
-            .with_tool_condition(re.map(|r| r * 1e-6), None)
-            .map_err(located("edge_radius_um", re))?;
-        t = t
-            .with_tool_condition(re.map(|r| r * 1e-6), vb.map(|v| v * 1e-3))
-            .map_err(located("flank_wear_mm", vb))?;
+        t = t.with_tool_condition(re.map(|r| r * 1e-6), None).map_err(located("edge_radius_um", re))?;
+        t = t.with_tool_condition(re.map(|r| r * 1e-6), vb.map(|v| v * 1e-3)).map_err(located("flank_wear_mm", vb))?;
         if let Some(o) = num("order", false)? {
             if o < 0.0 || o.fract() != 0.0 || o > 1e9 {
-                return Err(InputError::new(
-                    path,
-                    line,
-                    "order",
-                    o,
-                    "must be a non-negative whole number",
-                ));
+                return Err(InputError::new(path, line, "order", o, "must be a non-negative whole number"));
             }
             t.order = Some(o as u32);
         }
         tests.push(t);
     }
     if tests.is_empty() {
-        return Err(InputError::new(
-            path,
-            header_line,
-            "(rows)",
-            "",
-            "no test rows",
-        ));
+        return Err(InputError::new(path, header_line, "(rows)", "", "no test rows"));
     }
     Ok(tests)
 }
@@ -253,28 +180,18 @@ mod tests {
 
     #[test]
     fn totals_are_divided_by_width() {
-        let t = parse(
-            "test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n,ft_n\n1,200,0.15,1.6,-7,610,450\n",
-        )
-        .unwrap();
+        let t = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n,ft_n\n1,200,0.15,1.6,-7,610,450\n").unwrap();
         // 610 N over 1.6 mm = 381.25 N/mm.
         assert!((t[0].measured.cutting_force_n_per_m.unwrap() - 381_250.0).abs() < 1e-6);
     }
 
     #[test]
     fn errors_are_located() {
-        let e =
-            parse("test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm\n1,200,0.15,1.6,0,-5\n")
-                .unwrap_err();
-        assert_eq!(
-            (e.line, e.field.as_str(), e.value.as_str()),
-            (Some(2), "fc_n_per_mm", "-5")
-        );
+        let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm\n1,200,0.15,1.6,0,-5\n").unwrap_err();
+        assert_eq!((e.line, e.field.as_str(), e.value.as_str()), (Some(2), "fc_n_per_mm", "-5"));
         let e = parse("test,speed_m_min,uncut_mm,rake_deg\n1,200,0.15,0\n").unwrap_err();
         assert_eq!(e.field, "width_mm");
-        let e =
-            parse("test,speed_m_min,uncut_mm,width_mm,rake_deg\n1,200,0.15,1,0\n1,100,0.1,1,0\n")
-                .unwrap_err();
+        let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg\n1,200,0.15,1,0\n1,100,0.1,1,0\n").unwrap_err();
         assert_eq!((e.line, e.field.as_str()), (Some(3), "test"));
         let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg\n1,NaN,0.15,1,0\n").unwrap_err();
         assert_eq!(e.field, "speed_m_min");
