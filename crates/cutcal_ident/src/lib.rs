@@ -1,1 +1,20 @@
-//! placeholder
+//! cutcal_ident: Johnson-Cook parameter identification. No file I/O.
+//!
+//! - [`lm`]: a bounded Levenberg-Marquardt solver on nalgebra (why our own: see the module);
+//! - [`multistart`]: seeded Latin-hypercube multistart and fit statistics (covariance, correlation,
+//!   parameters at bounds);
+//! - [`dpzd_fit`]: the paper's Eq 15 identification from one DPZD zone solution.
+//!
+//! Data flow: `cutcal_model::dpzd::ZoneSolution` -> [`dpzd_fit::identify_from_zone`] ->
+//! [`dpzd_fit::JcIdentification`].
+#![warn(missing_docs)]
+
+pub mod dpzd_fit;
+pub mod error;
+pub mod lm;
+pub mod multistart;
+
+pub use dpzd_fit::{identify_from_zone, JcBounds, JcConstants, JcIdentification};
+pub use error::IdentError;
+pub use lm::{Bounds, LmOptions, Problem};
+pub use multistart::{FitStatistics, MultistartOptions};
