@@ -1,5 +1,35 @@
 //! cutcal_cli: the edge of cutcal. Reads input files into model types, runs the library crates,
 //! writes outputs atomically. The `cutcal` binary is a thin wrapper over [`run`].
 #![warn(missing_docs)]
+// The CLI prints its results: that is its job.
+#![allow(clippy::print_stdout)]
 
+pub mod commands;
 pub mod input;
+pub mod output;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+
+/// cutcal: orthogonal cutting tests -> Johnson-Cook parameters -> FE cards and predictions.
+#[derive(Debug, Parser)]
+#[command(name = "cutcal", version, about)]
+pub struct Cli {
+    /// The job.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Identify Johnson-Cook parameters from a cutting test (DPZD, paper Eq 15).
+    Identify(commands::identify::IdentifyArgs),
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Identify(a) => commands::identify::run(&a),
+    }
+}

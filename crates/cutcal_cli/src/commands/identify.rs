@@ -1,0 +1,411 @@
+//! `cutcal identify`: Johnson-Cook parameters from one cutting test through the DPZD model
+//! (paper Eq 15), original or enhanced.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use cutcal_ident::{identify_from_zone, JcBounds, JcConstants, JcIdentification, MultistartOptions};
+use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState, ZoneSolution};
+use cutcal_model::CuttingTest;
+use serde::Serialize;
+
+use crate::input::material_file::{load_material, MaterialFile};
+use crate::input::tests_csv::load_tests;
+use crate::output::write_atomic;
+
+/// Which DPZD model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ModelChoice {
+    /// Thermally uncoupled model (constant rho*Cp, tau0(Tr) at both boundaries).
+    Original,
+    /// Thermomechanically enhanced model (paper Sec 3.3-3.5).
+    Enhanced,
+}
+
+/// Arguments of `cutcal identify`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct IdentifyArgs {
+    /// Material file (TOML), e.g. fixtures/materials/c38.toml.
+    #[arg(long)]
+    pub material: PathBuf,
+    /// Test file (CSV), e.g. fixtures/tests/c38.csv.
+    #[arg(long)]
+    pub tests: PathBuf,
+    /// Test id to identify from (default: the material's `dpzd.identification_test`).
+    #[arg(long)]
+    pub test: Option<String>,
+    /// DPZD model variant.
+    #[arg(long, value_enum, default_value_t = ModelChoice::Enhanced)]
+    pub model: ModelChoice,
+    /// Primary shear zone thickness h, mm.
+    #[arg(long, default_value_t = 0.1)]
+    pub h_mm: f64,
+    /// Number of interior fit points N of Eq 15.
+    #[arg(long, default_value_t = 51)]
+    pub points: usize,
+    /// Strain-rate exponent r of Eq 2 (default: the material's `dpzd.r`).
+    #[arg(long)]
+    pub r: Option<f64>,
+    /// Multistart starts.
+    #[arg(long, default_value_t = 32)]
+    pub starts: usize,
+    /// Multistart seed.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Constant rho*Cp of the original model, J/(cm^3 K) (default: the material's value, else 3.5325).
+    #[arg(long)]
+    pub rho_cp_original: Option<f64>,
+    /// Enhanced fixed point tolerance on the exit temperature, K.
+    #[arg(long, default_value_t = 1e-6)]
+    pub tolerance_c: f64,
+    /// Enhanced fixed point iteration cap.
+    #[arg(long, default_value_t = 50)]
+    pub max_iterations: usize,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Write the zone fields (x, gamma, gammadot, eps, epsdot, tau, T) to this CSV.
+    #[arg(long)]
+    pub fields_csv: Option<PathBuf>,
+    /// Write the identified JC set to this TOML (loadable by --jc).
+    #[arg(long)]
+    pub out_jc: Option<PathBuf>,
+}
+
+/// JC parameters in report units.
+#[derive(Debug, Clone, Serialize)]
+pub struct JcReport {
+    /// A, MPa.
+    pub a_mpa: f64,
+    /// B, MPa.
+    pub b_mpa: f64,
+    /// n.
+    pub n: f64,
+    /// C.
+    pub c: f64,
+    /// m.
+    pub m: f64,
+    /// Reference strain rate, 1/s.
+    pub eps0_per_s: f64,
+    /// Tm, degC.
+    pub tm_c: f64,
+    /// Tr, degC.
+    pub tr_c: f64,
+}
+
+impl From<&cutcal_model::JcParams> for JcReport {
+    fn from(jc: &cutcal_model::JcParams) -> Self {
+        Self {
+            a_mpa: jc.a_pa / 1e6,
+            b_mpa: jc.b_pa / 1e6,
+            n: jc.n,
+            c: jc.c,
+            m: jc.m,
+            eps0_per_s: jc.eps0_per_s,
+            tm_c: jc.tm_c,
+            tr_c: jc.tr_c,
+        }
+    }
+}
+
+/// The machine-readable result of a DPZD identification.
+#[derive(Debug, Clone, Serialize)]
+pub struct DpzdIdentifyReport {
+    /// Material name.
+    pub material: String,
+    /// Test id.
+    pub test: String,
+    /// Model variant.
+    pub model: ModelChoice,
+    /// Zone thickness, mm.
+    pub h_mm: f64,
+    /// Exponent r.
+    pub r: f64,
+    /// Fit points.
+    pub points: usize,
+    /// Shear angle from the chip ratio, deg.
+    pub shear_angle_deg: f64,
+    /// Maximum shear stress (Eq 9), MPa.
+    pub tau_max_mpa: f64,
+    /// Maximum effective strain 2 gamma_AB / sqrt(3).
+    pub max_effective_strain: f64,
+    /// Shear-plane strain rate (effective), 1/s.
+    pub max_effective_strain_rate_per_s: f64,
+    /// Shear-plane (AB) temperature, degC.
+    pub t_ab_c: f64,
+    /// Exit (EF) temperature, degC.
+    pub t_ef_c: f64,
+    /// Exit shear strength, MPa.
+    pub tau0_ef_mpa: f64,
+    /// Fixed-point iterations.
+    pub iterations: usize,
+    /// Identified JC set.
+    pub jc: JcReport,
+    /// Eq 15 objective, MPa.
+    pub objective_mpa: f64,
+    /// RMS residual, MPa.
+    pub rms_mpa: f64,
+    /// Parameters at a bound.
+    pub at_bounds: Vec<String>,
+    /// Free parameters (order of covariance/correlation).
+    pub free: Vec<String>,
+    /// Standard errors of the free parameters (A, B in MPa).
+    pub std_errors: Option<Vec<f64>>,
+    /// Correlation matrix of the free parameters.
+    pub correlation: Option<Vec<Vec<f64>>>,
+    /// Covariance matrix of the free parameters.
+    pub covariance: Option<Vec<Vec<f64>>>,
+    /// Condition number of J^T J on the free set.
+    pub condition_number: Option<f64>,
+    /// Multistart starts.
+    pub starts: usize,
+    /// Starts reaching the best minimum.
+    pub starts_at_best: usize,
+    /// Index of the best start.
+    pub best_start: usize,
+    /// Multistart seed.
+    pub seed: u64,
+    /// Residual field at the fit points: x (mm) and JC - DPZD stress (MPa).
+    pub residual_field: Vec<[f64; 2]>,
+}
+
+/// Settings of one DPZD identification (resolved from CLI or project file).
+#[derive(Debug, Clone)]
+pub struct DpzdSettings {
+    /// Model variant.
+    pub model: ModelChoice,
+    /// Zone thickness, m.
+    pub h_m: f64,
+    /// Exponent r.
+    pub r: f64,
+    /// Fit points.
+    pub points: usize,
+    /// Constant rho*Cp of the original model, J/(m^3 K).
+    pub rho_cp_original_j_per_m3_k: f64,
+    /// Fixed-point tolerance, K.
+    pub tolerance_c: f64,
+    /// Fixed-point cap.
+    pub max_iterations: usize,
+    /// Multistart options.
+    pub multistart: MultistartOptions,
+}
+
+impl DpzdSettings {
+    /// The DPZD configuration.
+    pub fn config(&self) -> Result<DpzdConfig> {
+        let variant = match self.model {
+            ModelChoice::Original => DpzdVariant::Original { rho_cp_j_per_m3_k: self.rho_cp_original_j_per_m3_k },
+            ModelChoice::Enhanced => {
+                DpzdVariant::Enhanced { tolerance_c: self.tolerance_c, max_iterations: self.max_iterations }
+            }
+        };
+        Ok(DpzdConfig::new(self.h_m, self.r, variant)?)
+    }
+}
+
+/// Everything a DPZD identification produced.
+#[derive(Debug, Clone)]
+pub struct DpzdOutcome {
+    /// The solved zone.
+    pub zone: ZoneSolution,
+    /// The identification.
+    pub identification: JcIdentification,
+    /// The report.
+    pub report: DpzdIdentifyReport,
+}
+
+/// Bounds of a material file as identification bounds.
+pub fn jc_bounds(mf: &MaterialFile) -> Result<JcBounds> {
+    let b = mf.bounds.with_context(|| {
+        format!("{}: no [bounds] section (identification needs bounds on A, B, n, C, m)", mf.path.display())
+    })?;
+    Ok(JcBounds { a_mpa: b.a_mpa, b_mpa: b.b_mpa, n: b.n, c: b.c, m: b.m })
+}
+
+/// Runs the DPZD identification of `test` (library entry point shared by the CLI and `cutcal run`).
+pub fn identify_dpzd(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSettings) -> Result<DpzdOutcome> {
+    let state = ShearPlaneState::from_test(test).with_context(|| format!("test {}", test.id))?;
+    let config = settings.config()?;
+    let zone = dpzd::solve(&mf.material, &state, &config)
+        .with_context(|| format!("DPZD {:?} solve of test {}", settings.model, test.id))?;
+    let bounds = jc_bounds(mf)?;
+    let constants = JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };
+    let id = identify_from_zone(&zone, settings.points, &bounds, constants, &settings.multistart)
+        .with_context(|| format!("JC identification from test {}", test.id))?;
+    let xs: Vec<f64> = zone.interior_points(settings.points)?.iter().map(|p| p.x_m * 1e3).collect();
+    let s = &id.statistics;
+    let report = DpzdIdentifyReport {
+        material: mf.material.name.clone(),
+        test: test.id.clone(),
+        model: settings.model,
+        h_mm: settings.h_m * 1e3,
+        r: settings.r,
+        points: settings.points,
+        shear_angle_deg: state.shear_angle_rad.to_degrees(),
+        tau_max_mpa: state.tau_max_pa / 1e6,
+        max_effective_strain: 2.0 * zone.gamma_ab / 3f64.sqrt(),
+        max_effective_strain_rate_per_s: zone.gamma_dot_ab_per_s / 3f64.sqrt(),
+        t_ab_c: zone.t_ab_c,
+        t_ef_c: zone.t_ef_c,
+        tau0_ef_mpa: zone.tau0_ef_pa / 1e6,
+        iterations: zone.iterations,
+        jc: JcReport::from(&id.jc),
+        objective_mpa: id.objective_mpa,
+        rms_mpa: id.rms_mpa,
+        at_bounds: s.at_bounds.clone(),
+        free: s.free.clone(),
+        std_errors: s.std_errors.clone(),
+        correlation: s.correlation.clone(),
+        covariance: s.covariance.clone(),
+        condition_number: s.condition_number,
+        starts: id.starts,
+        starts_at_best: id.starts_at_best,
+        best_start: id.best_start,
+        seed: settings.multistart.seed,
+        residual_field: xs.iter().zip(&id.residuals_mpa).map(|(x, r)| [*x, *r]).collect(),
+    };
+    Ok(DpzdOutcome { zone, identification: id, report })
+}
+
+/// The zone fields as CSV (the data behind the paper's Fig 4).
+pub fn fields_csv(zone: &ZoneSolution, n: usize) -> Result<String> {
+    let mut out = String::from("x_mm,gamma,gamma_dot_per_s,eps,eps_dot_per_s,tau_mpa,sigma_eff_mpa,temperature_c\n");
+    for p in zone.profile(n)? {
+        writeln!(
+            out,
+            "{:.6},{:.6},{:.6e},{:.6},{:.6e},{:.4},{:.4},{:.4}",
+            p.x_m * 1e3,
+            p.gamma,
+            p.gamma_dot_per_s,
+            p.strain,
+            p.strain_rate_per_s,
+            p.tau_pa / 1e6,
+            p.effective_stress_pa / 1e6,
+            p.temperature_c
+        )?;
+    }
+    Ok(out)
+}
+
+/// A JC file (TOML) for an identified set.
+pub fn jc_toml(jc: &cutcal_model::JcParams, source: String) -> Result<String> {
+    Ok(toml::to_string(&crate::input::jc_file::JcFile::from_params(jc, Some(source)))?)
+}
+
+/// Resolves CLI arguments into settings for `mf`.
+pub fn settings_from_args(args: &IdentifyArgs, mf: &MaterialFile) -> Result<DpzdSettings> {
+    let r = match (args.r, &mf.dpzd) {
+        (Some(r), _) => r,
+        (None, Some(d)) => d.r,
+        (None, None) => bail!("{}: no [dpzd] r given; pass --r", mf.path.display()),
+    };
+    let rho_cp = args.rho_cp_original.or(mf.dpzd.as_ref().map(|d| d.rho_cp_original_j_per_cm3_k)).unwrap_or(3.5325);
+    if !(args.h_mm.is_finite() && args.h_mm > 0.0) {
+        bail!("--h-mm must be a positive number of mm, got {}", args.h_mm);
+    }
+    Ok(DpzdSettings {
+        model: args.model,
+        h_m: args.h_mm * 1e-3,
+        r,
+        points: args.points,
+        rho_cp_original_j_per_m3_k: rho_cp * 1e6,
+        tolerance_c: args.tolerance_c,
+        max_iterations: args.max_iterations,
+        multistart: MultistartOptions::new(args.starts, args.seed),
+    })
+}
+
+/// Finds test `id` (or the material's identification test) in `tests`.
+pub fn pick_test<'a>(
+    tests: &'a [CuttingTest],
+    id: Option<&str>,
+    mf: &MaterialFile,
+    tests_path: &std::path::Path,
+) -> Result<&'a CuttingTest> {
+    let id = match id {
+        Some(i) => i.to_string(),
+        None => mf
+            .dpzd
+            .as_ref()
+            .map(|d| d.identification_test.clone())
+            .with_context(|| format!("{}: no [dpzd] identification_test; pass --test", mf.path.display()))?,
+    };
+    tests.iter().find(|t| t.id == id).with_context(|| {
+        let ids: Vec<&str> = tests.iter().map(|t| t.id.as_str()).collect();
+        format!("{}: field `test`: no test with id '{id}' (ids: {ids:?})", tests_path.display())
+    })
+}
+
+/// Human-readable table of a report.
+#[must_use]
+pub fn render_table(r: &DpzdIdentifyReport) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "cutcal identify: {} test {} ({:?} DPZD, h = {} mm, r = {}, N = {})",
+        r.material, r.test, r.model, r.h_mm, r.r, r.points
+    );
+    let _ = writeln!(s, "  shear angle        {:>10.2} deg", r.shear_angle_deg);
+    let _ = writeln!(s, "  tau_max (Eq 9)     {:>10.1} MPa", r.tau_max_mpa);
+    let _ = writeln!(s, "  max eff. strain    {:>10.3}", r.max_effective_strain);
+    let _ = writeln!(s, "  max eff. rate      {:>10.3e} 1/s", r.max_effective_strain_rate_per_s);
+    let _ = writeln!(s, "  T_AB               {:>10.1} degC", r.t_ab_c);
+    let _ = writeln!(s, "  T_EF               {:>10.1} degC   ({} fixed-point iterations)", r.t_ef_c, r.iterations);
+    let _ = writeln!(s, "  parameter      value      std.err   note");
+    let se = |name: &str| -> String {
+        match (&r.std_errors, r.free.iter().position(|f| f == name)) {
+            (Some(se), Some(i)) => format!("{:>10.4}", se[i]),
+            _ => format!("{:>10}", "-"),
+        }
+    };
+    let note = |name: &str| if r.at_bounds.iter().any(|a| a == name) { "at bound" } else { "" };
+    let _ = writeln!(s, "  A [MPa]     {:>10.2} {}   {}", r.jc.a_mpa, se("a_mpa"), note("a_mpa"));
+    let _ = writeln!(s, "  B [MPa]     {:>10.2} {}   {}", r.jc.b_mpa, se("b_mpa"), note("b_mpa"));
+    let _ = writeln!(s, "  n           {:>10.4} {}   {}", r.jc.n, se("n"), note("n"));
+    let _ = writeln!(s, "  C           {:>10.5} {}   {}", r.jc.c, se("c"), note("c"));
+    let _ = writeln!(s, "  m           {:>10.4} {}   {}", r.jc.m, se("m"), note("m"));
+    let _ = writeln!(s, "  eps0 = {} 1/s, Tm = {} degC, Tr = {} degC", r.jc.eps0_per_s, r.jc.tm_c, r.jc.tr_c);
+    let _ = writeln!(
+        s,
+        "  objective (Eq 15) {:.2} MPa, RMS {:.2} MPa; {}/{} starts reached the best minimum (seed {})",
+        r.objective_mpa, r.rms_mpa, r.starts_at_best, r.starts, r.seed
+    );
+    if let Some(c) = &r.correlation {
+        let _ = writeln!(s, "  correlation of free parameters {:?}:", r.free);
+        for row in c {
+            let cells: Vec<String> = row.iter().map(|v| format!("{v:>7.3}")).collect();
+            let _ = writeln!(s, "    {}", cells.join(" "));
+        }
+    }
+    s
+}
+
+/// Runs `cutcal identify` (DPZD method).
+pub fn run(args: &IdentifyArgs) -> Result<()> {
+    let mf = load_material(&args.material)?;
+    let tests = load_tests(&args.tests)?;
+    let test = pick_test(&tests, args.test.as_deref(), &mf, &args.tests)?;
+    let settings = settings_from_args(args, &mf)?;
+    let out = identify_dpzd(&mf, test, &settings)?;
+    if let Some(p) = &args.fields_csv {
+        write_atomic(p, fields_csv(&out.zone, 201)?.as_bytes())?;
+    }
+    if let Some(p) = &args.out_jc {
+        let src = format!(
+            "cutcal {} identify: {} test {} ({:?} DPZD)",
+            env!("CARGO_PKG_VERSION"),
+            out.report.material,
+            out.report.test,
+            args.model
+        );
+        write_atomic(p, jc_toml(&out.identification.jc, src)?.as_bytes())?;
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&out.report)?);
+    } else {
+        print!("{}", render_table(&out.report));
+    }
+    Ok(())
+}

@@ -1,0 +1,3 @@
+//! One module per `cutcal` subcommand: a clap `Args` struct and a `run` function.
+
+pub mod identify;

@@ -1,0 +1,21 @@
+//! End-to-end tests of the `cutcal` binary: outputs, exit codes and located error messages.
+
+mod identify;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The repository root.
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().expect("repository root")
+}
+
+/// Runs `cutcal` with `args` from the repository root.
+pub fn cutcal(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_cutcal")).args(args).current_dir(root()).output().expect("run cutcal")
+}
+
+/// Stderr as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
