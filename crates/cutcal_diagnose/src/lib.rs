@@ -1,0 +1,12 @@
+//! cutcal_diagnose: discrepancy discovery between a simulation and cutting recordings. No file I/O.
+//!
+//! Locate the mismatch, name the physics that was left out, model it, refit jointly with the
+//! baseline parameters and show the fit improve on held-out conditions, with a calibrated
+//! false-positive rate (design note `discrepancy-discovery.md`, Sec 3).
+#![warn(missing_docs)]
+
+pub mod error;
+pub mod lite;
+pub mod stats;
+
+pub use error::DiagnoseError;
