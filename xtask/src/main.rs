@@ -1,1 +1,35 @@
-fn main() {}
+//! `cargo xtask <task>`: cutcal's automation in plain Rust (rust-analyzer style). This file only
+//! dispatches; options live in `flags.rs`, each task in its own file.
+// xtask is a command-line program: printing is its job.
+#![allow(clippy::print_stdout, clippy::print_stderr)]
+
+mod flags;
+mod pipeline;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::Parser;
+
+/// The repository root (xtask lives one level below it).
+fn project_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."))
+}
+
+fn main() -> ExitCode {
+    let flags = flags::Xtask::parse();
+    if let Err(e) = std::env::set_current_dir(project_root()) {
+        eprintln!("error: cannot enter the project root: {e}");
+        return ExitCode::FAILURE;
+    }
+    let result = match flags.task {
+        flags::Task::Pipeline(f) => pipeline::run(&f),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

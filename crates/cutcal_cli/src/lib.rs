@@ -7,6 +7,7 @@
 pub mod commands;
 pub mod input;
 pub mod output;
+pub mod report;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -25,11 +26,14 @@ pub struct Cli {
 pub enum Command {
     /// Identify Johnson-Cook parameters from a cutting test (DPZD, paper Eq 15).
     Identify(commands::identify::IdentifyArgs),
+    /// Run a whole project: identification, cards, predictions, report.
+    Run(commands::run::RunArgs),
 }
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Identify(a) => commands::identify::run(&a),
+        Command::Run(a) => commands::run::run(&a),
     }
 }

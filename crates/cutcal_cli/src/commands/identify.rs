@@ -15,7 +15,7 @@ use crate::input::tests_csv::load_tests;
 use crate::output::write_atomic;
 
 /// Which DPZD model.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ModelChoice {
     /// Thermally uncoupled model (constant rho*Cp, tau0(Tr) at both boundaries).

@@ -1,3 +1,4 @@
 //! One module per `cutcal` subcommand: a clap `Args` struct and a `run` function.
 
 pub mod identify;
+pub mod run;
