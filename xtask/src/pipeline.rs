@@ -5,6 +5,8 @@ use std::fs;
 
 use anyhow::{bail, Context, Result};
 
+use cutcal_cli::output::StagedDir;
+
 use crate::flags::PipelineFlags;
 
 /// Runs every project file (sorted by name) and prints a summary.
@@ -18,14 +20,18 @@ pub fn run(flags: &PipelineFlags) -> Result<()> {
     if projects.is_empty() {
         bail!("{}: no project files (*.toml)", flags.projects.display());
     }
+    // The whole output root is staged: a failure in any project leaves the previous outputs (or
+    // nothing) in place, never a half-written tree.
+    let staged = StagedDir::new(&flags.out)?;
     let mut summary = Vec::new();
     for p in &projects {
         let project = cutcal_cli::commands::run::load_project(p)?;
-        let out = flags.out.join(&project.name);
+        let out = staged.path(&project.name);
         let report = cutcal_cli::commands::run::run_project(p, &out, flags.quiet)
             .with_context(|| format!("project {}", p.display()))?;
         summary.push(report);
     }
+    staged.commit()?;
     if flags.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());
@@ -66,4 +72,115 @@ pub fn run(flags: &PipelineFlags) -> Result<()> {
     }
     println!("outputs in {}/<project>/", flags.out.display());
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::{Path, PathBuf};
+
+    use super::*;
+
+    fn flags(out: &Path, projects: &Path) -> PipelineFlags {
+        PipelineFlags { out: out.to_path_buf(), projects: projects.to_path_buf(), quiet: true, json: true }
+    }
+
+    fn root() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+    }
+
+    fn all_files(dir: &Path) -> Vec<PathBuf> {
+        let mut v = Vec::new();
+        for e in fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                v.extend(all_files(&p));
+            } else {
+                v.push(p);
+            }
+        }
+        v.sort();
+        v
+    }
+
+    /// Checks that an SVG is well-formed XML and names its data series.
+    fn svg_series(path: &Path) -> Vec<String> {
+        let text = fs::read_to_string(path).unwrap();
+        let mut reader = quick_xml::Reader::from_str(&text);
+        let mut names = Vec::new();
+        let mut depth = 0i32;
+        loop {
+            match reader.read_event() {
+                Ok(quick_xml::events::Event::Start(e)) => {
+                    depth += 1;
+                    if let Some(a) = e.try_get_attribute("data-name").unwrap() {
+                        names.push(String::from_utf8_lossy(&a.value).into_owned());
+                    }
+                }
+                Ok(quick_xml::events::Event::End(_)) => depth -= 1,
+                Ok(quick_xml::events::Event::Eof) => break,
+                Ok(_) => {}
+                Err(e) => panic!("{}: not well-formed: {e}", path.display()),
+            }
+        }
+        assert_eq!(depth, 0, "{}: unbalanced", path.display());
+        names
+    }
+
+    #[test]
+    fn pipeline_writes_parseable_outputs_and_is_byte_identical() {
+        let tmp = tempfile::tempdir().unwrap();
+        let (a, b) = (tmp.path().join("a"), tmp.path().join("b"));
+        run(&flags(&a, &root().join("fixtures/projects"))).unwrap();
+        run(&flags(&b, &root().join("fixtures/projects"))).unwrap();
+        let fa = all_files(&a);
+        assert_eq!(fa.len(), all_files(&b).len());
+        for f in &fa {
+            let rel = f.strip_prefix(&a).unwrap();
+            assert_eq!(fs::read(f).unwrap(), fs::read(b.join(rel)).unwrap(), "{} differs between runs", rel.display());
+        }
+        for project in ["c38", "42crmo4", "aa6082", "aisi1045"] {
+            let dir = a.join(project);
+            let report: serde_json::Value =
+                serde_json::from_slice(&fs::read(dir.join("report.json")).unwrap()).unwrap();
+            for f in report["files"].as_array().unwrap() {
+                assert!(dir.join(f.as_str().unwrap()).is_file(), "{project}: {f} listed but missing");
+            }
+            assert!(fs::read_to_string(dir.join("report.md")).unwrap().starts_with("# cutcal report"));
+        }
+        // The paper's Fig 4 analogue carries both models.
+        assert_eq!(svg_series(&a.join("c38/fig4_temperature.svg")), vec!["original DPZD", "enhanced DPZD"]);
+        for f in fa.iter().filter(|f| f.extension().is_some_and(|e| e == "svg")) {
+            assert!(!svg_series(f).is_empty(), "{}: no series", f.display());
+        }
+        // C38 identification in the report: Table 4 original A within 2 % (paper: 671 MPa).
+        let r: serde_json::Value = serde_json::from_slice(&fs::read(a.join("c38/report.json")).unwrap()).unwrap();
+        let a_orig = r["identification"]["original"]["jc"]["a_mpa"].as_f64().unwrap();
+        assert!((a_orig - 671.0).abs() < 0.02 * 671.0, "{a_orig}");
+    }
+
+    #[test]
+    fn broken_fixture_stops_with_a_located_error_and_leaves_nothing() {
+        let tmp = tempfile::tempdir().unwrap();
+        let projects = tmp.path().join("projects");
+        fs::create_dir_all(&projects).unwrap();
+        let text = fs::read_to_string(root().join("fixtures/projects/c38.toml")).unwrap();
+        let fixtures = root().join("fixtures").canonicalize().unwrap();
+        let text = text.replace("../", &format!("{}/", fixtures.display()));
+        fs::write(projects.join("a_good.toml"), &text).unwrap();
+        let broken_tests = tmp.path().join("broken.csv");
+        fs::write(&broken_tests, "test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm,ft_n_per_mm,chip_mm\n3,240,0.075,1.95,0,224,abc,0.157\n").unwrap();
+        let bad = text
+            .replace(&format!("{}/tests/c38.csv", fixtures.display()), broken_tests.to_str().unwrap())
+            .replace("name = \"c38\"", "name = \"z_bad\"");
+        fs::write(projects.join("z_bad.toml"), bad).unwrap();
+        let out = tmp.path().join("out");
+        let err = format!("{:#}", run(&flags(&out, &projects)).unwrap_err());
+        assert!(err.contains("broken.csv:2: field `ft_n_per_mm` = 'abc'"), "{err}");
+        assert!(!out.exists(), "a failed pipeline must not leave an output directory");
+        // Only the two inputs remain: no output, no staging directory.
+        assert_eq!(fs::read_dir(tmp.path()).unwrap().count(), 2, "staging left behind");
+        // A wrong projects path is a located error too.
+        let err = format!("{:#}", run(&flags(&out, &tmp.path().join("nope"))).unwrap_err());
+        assert!(err.contains("nope"), "{err}");
+    }
 }
