@@ -23,6 +23,7 @@ pub mod error;
 pub mod jc;
 pub mod kinematics;
 pub mod material;
+pub mod oxley;
 pub mod poly;
 
 pub use cutting_test::{CuttingTest, Measured};
