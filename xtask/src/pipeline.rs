@@ -152,6 +152,13 @@ mod tests {
         for f in fa.iter().filter(|f| f.extension().is_some_and(|e| e == "svg")) {
             assert!(!svg_series(f).is_empty(), "{}: no series", f.display());
         }
+        // The plot shown in the README is the generated one (run `cargo xtask pipeline` and copy
+        // target/pipeline/c38/fig4_temperature.svg to docs/img/ when this fails).
+        assert_eq!(
+            fs::read(a.join("c38/fig4_temperature.svg")).unwrap(),
+            fs::read(root().join("docs/img/fig4_temperature.svg")).unwrap(),
+            "docs/img/fig4_temperature.svg is stale"
+        );
         // C38 identification in the report: Table 4 original A within 2 % (paper: 671 MPa).
         let r: serde_json::Value = serde_json::from_slice(&fs::read(a.join("c38/report.json")).unwrap()).unwrap();
         let a_orig = r["identification"]["original"]["jc"]["a_mpa"].as_f64().unwrap();

@@ -217,8 +217,9 @@ impl Plot {
             } else {
                 let _ = write!(
                     s,
-                    r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{c}" stroke-width="2"/>"#,
-                    lx + 20.0
+                    r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{c}" stroke-width="2"{}/>"#,
+                    lx + 20.0,
+                    if se.dashed { r#" stroke-dasharray="6 4""# } else { "" }
                 );
             }
             let _ = writeln!(s, r#"<text x="{}" y="{}">{}</text></g>"#, lx + 26.0, ly + 4.0, esc(&se.name));
