@@ -227,11 +227,13 @@ impl<'a> Solver<'a> {
     /// (phi, C0) at one delta: warm-started Newton, else nested bracketing.
     pub fn solve_at(&mut self, delta: f64) -> Result<State, ModelError> {
         let tol = self.ctx.options.residual_tolerance;
-        if let Some(g) = self.last {
-            if let Ok(s) = self.newton(delta, g) {
-                self.last = Some((s.primary.phi_rad, s.primary.c0));
-                return Ok(s);
-            }
+        // Warm start from the last solution; on a cold start, from phi = 22 deg + 0.8 alpha and
+        // C0 = 5 (a rough fit to Lalwani et al. 2009's AISI 1045 solutions; only a starting point).
+        let alpha = self.ctx.conditions.rake_rad;
+        let guess = self.last.unwrap_or((22f64.to_radians() + 0.8 * alpha, 5.0));
+        if let Ok(s) = self.newton(delta, guess) {
+            self.last = Some((s.primary.phi_rad, s.primary.c0));
+            return Ok(s);
         }
         let s = self.bracketed(delta)?;
         if s.residual_norm() >= tol {

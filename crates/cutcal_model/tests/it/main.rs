@@ -4,3 +4,7 @@
 mod support;
 // Extended Oxley vs Lalwani et al. 2009 on the four AISI 1045 cases (Ivester et al. 2000).
 mod oxley_lalwani;
+// Convergence map over >= 1000 conditions per material: converged share, typed errors, no NaN.
+mod oxley_convergence;
+// Property tests: Fc rises with t1, phi rises with rake, equilibrium recomputed from the outputs.
+mod oxley_props;

@@ -1,0 +1,94 @@
+//! Convergence map of the extended Oxley solve: V 30-600 m/min, t1 0.02-0.4 mm, rake -10..+20 deg,
+//! 10 x 10 x 10 = 1000 conditions each for AISI 1045 (Jaspers & Dautzenberg JC) and AA6082 (Table 5 JC).
+
+use std::collections::BTreeMap;
+
+use cutcal_model::oxley::{self, CuttingConditions, OxleyOptions, OxleyPrediction, Physics};
+use cutcal_model::{JcParams, Material, ModelError};
+
+use crate::support::{aa6082, aisi1045, jc_aa6082, jc_aisi1045};
+
+fn lin(lo: f64, hi: f64, i: usize, n: usize) -> f64 {
+    lo + (hi - lo) * i as f64 / (n - 1) as f64
+}
+
+/// Every finite output of a prediction (flags excluded).
+fn all_finite(p: &OxleyPrediction) -> bool {
+    [
+        p.phi_rad,
+        p.c0,
+        p.delta,
+        p.cutting_force_n_per_m,
+        p.feed_force_n_per_m,
+        p.chip_thickness_m,
+        p.contact_length_m,
+        p.temperature_ab_c,
+        p.temperature_int_c,
+        p.strain_ab,
+        p.strain_rate_ab_per_s,
+        p.strain_int,
+        p.strain_rate_int_per_s,
+        p.residual_shear,
+        p.residual_normal,
+    ]
+    .iter()
+    .all(|v| v.is_finite())
+}
+
+fn map(material: &Material, jc: &JcParams, work_c: f64) -> (usize, usize, BTreeMap<String, usize>) {
+    let opts = OxleyOptions::wide();
+    let n = 10;
+    let (mut total, mut ok) = (0, 0);
+    let mut errors: BTreeMap<String, usize> = BTreeMap::new();
+    for i in 0..n {
+        for j in 0..n {
+            for k in 0..n {
+                let v = lin(30.0, 600.0, i, n) / 60.0;
+                let t1 = lin(0.02e-3, 0.4e-3, j, n);
+                let rake = lin(-10.0, 20.0, k, n).to_radians();
+                let cond = CuttingConditions::new(v, t1, 1e-3, rake, work_c).unwrap();
+                total += 1;
+                match oxley::predict(material, jc, &cond, &opts, &Physics::baseline()) {
+                    Ok(p) => {
+                        assert!(all_finite(&p), "non-finite output at V {v} t1 {t1} rake {rake}: {p:?}");
+                        assert!(p.residual_shear.abs().max(p.residual_normal.abs()) < opts.residual_tolerance);
+                        assert!(p.temperature_int_c < jc.tm_c && p.temperature_ab_c < jc.tm_c);
+                        assert!(p.cutting_force_n_per_m > 0.0 && p.chip_thickness_m > 0.0);
+                        ok += 1;
+                    }
+                    Err(e) => {
+                        let kind = match e {
+                            ModelError::NoSolution { .. } => "NoSolution",
+                            ModelError::NoConvergence { .. } => "NoConvergence",
+                            ModelError::AboveMelting { .. } => "AboveMelting",
+                            ModelError::OutOfRange { .. } => "OutOfRange",
+                            ModelError::Inconsistent(_) => "Inconsistent",
+                            _ => "other",
+                        };
+                        assert!(!e.to_string().is_empty());
+                        *errors.entry(kind.to_string()).or_default() += 1;
+                    }
+                }
+            }
+        }
+    }
+    (total, ok, errors)
+}
+
+#[test]
+fn convergence_map_aisi1045_1000_conditions() {
+    let (total, ok, errors) = map(&aisi1045(), &jc_aisi1045(), 25.0);
+    println!("AISI 1045: {ok}/{total} converged ({:.1} %), errors {errors:?}", 100.0 * ok as f64 / total as f64);
+    assert_eq!(total, 1000);
+    // The AISI 1045 conditions of Lalwani et al. 2009 sit inside this map and all solve
+    // (oxley_lalwani), so a converged share below one half would mean a broken solver.
+    assert!(ok * 2 > total, "only {ok}/{total} converged: {errors:?}");
+}
+
+#[test]
+fn convergence_map_aa6082_1000_conditions() {
+    let (total, ok, errors) = map(&aa6082(), &jc_aa6082(), 20.0);
+    println!("AA6082: {ok}/{total} converged ({:.1} %), errors {errors:?}", 100.0 * ok as f64 / total as f64);
+    assert_eq!(total, 1000);
+    assert!(ok > 0, "no AA6082 condition converged: {errors:?}");
+}
