@@ -24,13 +24,16 @@ pub fn run(flags: &PipelineFlags) -> Result<()> {
     // nothing) in place, never a half-written tree.
     let staged = StagedDir::new(&flags.out)?;
     let mut summary = Vec::new();
+    let bar = cutcal_cli::progress::bar(projects.len() as u64, "pipeline projects", flags.quiet);
     for p in &projects {
         let project = cutcal_cli::commands::run::load_project(p)?;
         let out = staged.path(&project.name);
         let report = cutcal_cli::commands::run::run_project(p, &out, flags.quiet)
             .with_context(|| format!("project {}", p.display()))?;
         summary.push(report);
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     staged.commit()?;
     if flags.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);

@@ -7,6 +7,7 @@
 pub mod commands;
 pub mod input;
 pub mod output;
+pub mod progress;
 pub mod report;
 
 use anyhow::Result;
