@@ -5,6 +5,7 @@
 
 mod flags;
 mod pipeline;
+mod tidy;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
