@@ -1,0 +1,362 @@
+//! Joint identification of Johnson-Cook parameters from several orthogonal cutting tests through the
+//! extended Oxley model (OXCUT-style inverse use of Oxley's theory).
+//!
+//! Residuals, relative-error weighted (dimensionless), for every test `i` with the measurement:
+//!
+//! ```text
+//! r = (Fc_pred,i - Fc_meas,i) / Fc_meas,i,   (Ft_pred,i - Ft_meas,i) / Ft_meas,i,   (t2_pred,i - tc_meas,i) / tc_meas,i
+//! ```
+//!
+//! Forces are per unit width (N/m) on both sides (the CLI converts totals with the width); the chip
+//! thickness term is used only where measured and when [`JointOptions::use_chip_thickness`] is set.
+//! The bounded LM with seeded multistart of [`crate::multistart`] minimises `|r|^2` over
+//! `[A_MPa, B_MPa, n, C, m]`; covariance and at-bound flags come from [`crate::multistart::fit_statistics`].
+//!
+//! **Source:** the inverse use of Oxley's model follows the OXCUT approach (Oxley 1989, Ch. 7 uses the
+//! forward model for machinability data); the forward model is [`cutcal_model::oxley`].
+
+use std::cell::RefCell;
+
+use nalgebra::{DMatrix, DVector};
+use serde::Serialize;
+
+use cutcal_model::oxley::{self, CuttingConditions, OxleyOptions, OxleyPrediction, Physics};
+use cutcal_model::{CuttingTest, Material};
+
+use crate::dpzd_fit::{JcBounds, JcConstants};
+use crate::error::IdentError;
+use crate::lm::{Bounds, Problem};
+use crate::multistart::{fit_statistics, multistart, FitStatistics, MultistartOptions};
+
+/// Settings of the joint fit besides the bounds and the multistart.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointOptions {
+    /// Forward-model options.
+    pub oxley: OxleyOptions,
+    /// Extra physics in the forward model (usually [`Physics::baseline`]).
+    pub physics: Physics,
+    /// Initial work temperature, degC (usually the material's room temperature).
+    pub work_temperature_c: f64,
+    /// Fit the measured chip thickness where a test has it.
+    pub use_chip_thickness: bool,
+}
+
+/// Which measured quantity a residual compares.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Quantity {
+    /// Cutting force.
+    CuttingForce,
+    /// Feed force.
+    FeedForce,
+    /// Chip thickness.
+    ChipThickness,
+}
+
+/// One residual: its test, quantity and measured value (SI: N/m or m).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Observation {
+    /// Index of the test in the input slice.
+    pub test: usize,
+    /// The quantity.
+    pub quantity: Quantity,
+    /// Measured value, N/m or m.
+    pub measured: f64,
+}
+
+/// The least-squares problem: one forward prediction per test per evaluation, warm-started.
+pub struct JointOxleyProblem<'a> {
+    material: &'a Material,
+    conditions: Vec<CuttingConditions>,
+    observations: Vec<Observation>,
+    constants: JcConstants,
+    options: &'a JointOptions,
+    warm: RefCell<Vec<Option<OxleyPrediction>>>,
+}
+
+impl<'a> JointOxleyProblem<'a> {
+    /// Assembles the problem from the tests' measurements.
+    ///
+    /// Returns an error if a test's conditions are invalid or no test has a measured force.
+    pub fn new(
+        material: &'a Material,
+        tests: &[CuttingTest],
+        constants: JcConstants,
+        options: &'a JointOptions,
+    ) -> Result<Self, IdentError> {
+        let mut conditions = Vec::with_capacity(tests.len());
+        let mut observations = Vec::new();
+        for (i, t) in tests.iter().enumerate() {
+            conditions.push(CuttingConditions::from_test(t, options.work_temperature_c)?);
+            let m = &t.measured;
+            if let Some(v) = m.cutting_force_n_per_m {
+                observations.push(Observation { test: i, quantity: Quantity::CuttingForce, measured: v });
+            }
+            if let Some(v) = m.feed_force_n_per_m {
+                observations.push(Observation { test: i, quantity: Quantity::FeedForce, measured: v });
+            }
+            if options.use_chip_thickness {
+                if let Some(v) = m.chip_thickness_m {
+                    observations.push(Observation { test: i, quantity: Quantity::ChipThickness, measured: v });
+                }
+            }
+        }
+        if observations.is_empty() {
+            return Err(IdentError::InvalidOptions("no test has a measured cutting or feed force".into()));
+        }
+        Ok(Self {
+            material,
+            warm: RefCell::new(vec![None; conditions.len()]),
+            conditions,
+            observations,
+            constants,
+            options,
+        })
+    }
+
+    /// The observations, in residual order.
+    #[must_use]
+    pub fn observations(&self) -> &[Observation] {
+        &self.observations
+    }
+
+    /// Forward predictions of every test at parameters `p = [A_MPa, B_MPa, n, C, m]`.
+    pub fn predictions(&self, p: &DVector<f64>) -> Result<Vec<OxleyPrediction>, IdentError> {
+        let jc = self.constants.params(p);
+        let mut warm = self.warm.borrow_mut();
+        let mut out = Vec::with_capacity(self.conditions.len());
+        for (i, c) in self.conditions.iter().enumerate() {
+            let pred = oxley::predict_from(
+                self.material,
+                &jc,
+                c,
+                &self.options.oxley,
+                &self.options.physics,
+                warm[i].as_ref(),
+            )?;
+            warm[i] = Some(pred);
+            out.push(pred);
+        }
+        Ok(out)
+    }
+}
+
+impl Problem for JointOxleyProblem<'_> {
+    fn parameter_count(&self) -> usize {
+        5
+    }
+
+    fn residual_count(&self) -> usize {
+        self.observations.len()
+    }
+
+    fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
+        let preds = self.predictions(p)?;
+        for (k, o) in self.observations.iter().enumerate() {
+            let pr = &preds[o.test];
+            let v = match o.quantity {
+                Quantity::CuttingForce => pr.cutting_force_n_per_m,
+                Quantity::FeedForce => pr.feed_force_n_per_m,
+                Quantity::ChipThickness => pr.chip_thickness_m,
+            };
+            out[k] = (v - o.measured) / o.measured;
+        }
+        Ok(())
+    }
+
+    /// Forward differences (one forward solve set per parameter, half the cost of central ones);
+    /// the step is 1e-5 of the bound width, taken inward at the upper bound.
+    fn jacobian(&self, p: &DVector<f64>, bounds: &Bounds, out: &mut DMatrix<f64>) -> Result<(), IdentError> {
+        let m = self.residual_count();
+        let mut r0 = DVector::zeros(m);
+        let mut r1 = DVector::zeros(m);
+        self.residuals(p, &mut r0)?;
+        for k in 0..5 {
+            let width = bounds.upper[k] - bounds.lower[k];
+            let mut h = 1e-5 * width.max(p[k].abs() * 1e-2).max(1e-12);
+            if p[k] + h > bounds.upper[k] {
+                h = -h;
+            }
+            let mut q = p.clone();
+            q[k] += h;
+            self.residuals(&q, &mut r1)?;
+            for i in 0..m {
+                out[(i, k)] = (r1[i] - r0[i]) / h;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The outcome of a joint identification.
+#[derive(Debug, Clone, Serialize)]
+pub struct OxleyIdentification {
+    /// Identified JC parameters.
+    pub jc: cutcal_model::JcParams,
+    /// The residuals (relative errors) at the solution, in observation order.
+    pub relative_errors: Vec<f64>,
+    /// What each residual compares.
+    pub observations: Vec<Observation>,
+    /// Forward predictions at the solution, one per test.
+    pub predictions: Vec<OxleyPrediction>,
+    /// Fit statistics: covariance, correlation, parameters at bounds.
+    pub statistics: FitStatistics,
+    /// Starts run.
+    pub starts: usize,
+    /// Starts reaching the best minimum.
+    pub starts_at_best: usize,
+    /// Index of the best start.
+    pub best_start: usize,
+    /// Starts that failed.
+    pub failed_starts: usize,
+    /// LM iterations of the best start.
+    pub iterations: usize,
+}
+
+/// Fits JC jointly to the measured forces (and chip thickness) of `tests` through the extended
+/// Oxley model, within `bounds`, from a seeded multistart.
+///
+/// Returns an error if the tests or bounds are invalid, or every start fails.
+pub fn identify_oxley(
+    material: &Material,
+    tests: &[CuttingTest],
+    bounds: &JcBounds,
+    constants: JcConstants,
+    options: &JointOptions,
+    multistart_options: &MultistartOptions,
+) -> Result<OxleyIdentification, IdentError> {
+    let problem = JointOxleyProblem::new(material, tests, constants, options)?;
+    let b = bounds.to_bounds()?;
+    let report = multistart(&problem, &b, multistart_options)?;
+    let stats = fit_statistics(&problem, &b, &report.best.params, &report.best.residuals)?;
+    let predictions = problem.predictions(&report.best.params)?;
+    Ok(OxleyIdentification {
+        jc: constants.params(&report.best.params),
+        relative_errors: report.best.residuals.iter().copied().collect(),
+        observations: problem.observations.clone(),
+        predictions,
+        statistics: stats,
+        starts: report.starts,
+        starts_at_best: report.starts_at_best,
+        best_start: report.best_start,
+        failed_starts: report.failed_starts,
+        iterations: report.best.iterations,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cutcal_model::{JcParams, TempPolynomial, ThermalProperties};
+
+    /// AISI 1045 with Lalwani et al. 2009's thermal data (rho 7862, Cp 420 + 0.504 T, K 52.61 - 0.0281 T).
+    fn aisi1045() -> Material {
+        let rho = TempPolynomial::constant(7862.0);
+        Material {
+            name: "AISI1045".into(),
+            thermal: ThermalProperties {
+                rho_cp: rho.product(&TempPolynomial::new(vec![420.0, 0.504]).unwrap()),
+                density: rho,
+                conductivity: TempPolynomial::new(vec![52.61, -0.0281]).unwrap(),
+                valid_from_c: 0.0,
+                valid_to_c: 1400.0,
+            },
+            yield_strength: None,
+            melting_c: 1460.0,
+            room_c: 25.0,
+            elastic: None,
+        }
+    }
+
+    fn options() -> JointOptions {
+        JointOptions {
+            oxley: OxleyOptions::wide(),
+            physics: Physics::baseline(),
+            work_temperature_c: 25.0,
+            use_chip_thickness: true,
+        }
+    }
+
+    const CONSTANTS: JcConstants = JcConstants { eps0_per_s: 1.0, tm_c: 1460.0, tr_c: 25.0 };
+
+    /// The four Ivester et al. 2000 cases (Lalwani et al. 2009): 200 m/min, w 1.6 mm; totals in N / 1.6 mm.
+    fn ivester_cases() -> Vec<CuttingTest> {
+        [(0.15, -7.0, 610.0, 450.0), (0.15, 5.0, 585.0, 385.0), (0.30, -7.0, 1150.0, 600.0), (0.30, 5.0, 920.0, 450.0)]
+            .iter()
+            .enumerate()
+            .map(|(i, &(t1, rake, fc, ft))| {
+                CuttingTest::new(format!("{}", i + 1), 200.0 / 60.0, t1 * 1e-3, 1.6e-3, f64::to_radians(rake))
+                    .unwrap()
+                    .with_forces(Some(fc / 1.6e-3), Some(ft / 1.6e-3))
+                    .unwrap()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn recovers_known_jc_from_synthetic_forward_data() {
+        // Synthetic data: Jaspers & Dautzenberg 2002 JC through the forward model at a 2 x 2 x 2 design
+        // (V 100/400 m/min, t1 0.1/0.3 mm, rake -5/+10 deg), Fc, Ft and t2 each.
+        let m = aisi1045();
+        let truth = JcParams::new(553.1e6, 600.8e6, 0.234, 0.0134, 1.0, 1.0, 1460.0, 25.0).unwrap();
+        let opts = options();
+        let mut tests = Vec::new();
+        for v in [100.0, 400.0] {
+            for t1 in [0.1e-3, 0.3e-3] {
+                for rake in [-5f64, 10.0] {
+                    let t = CuttingTest::new("s", v / 60.0, t1, 1e-3, rake.to_radians()).unwrap();
+                    let c = CuttingConditions::from_test(&t, 25.0).unwrap();
+                    let p = oxley::predict(&m, &truth, &c, &opts.oxley, &opts.physics).unwrap();
+                    tests.push(
+                        t.with_forces(Some(p.cutting_force_n_per_m), Some(p.feed_force_n_per_m))
+                            .unwrap()
+                            .with_chip_thickness(Some(p.chip_thickness_m))
+                            .unwrap(),
+                    );
+                }
+            }
+        }
+        // Bounds: the fixture's A, B wide box narrowed to +-40 % around the truth so that 3 starts suffice.
+        let bounds =
+            JcBounds { a_mpa: [350.0, 800.0], b_mpa: [350.0, 850.0], n: [0.12, 0.36], c: [0.005, 0.03], m: [0.7, 1.3] };
+        let ms = MultistartOptions::new(3, 11);
+        let id = identify_oxley(&m, &tests, &bounds, CONSTANTS, &opts, &ms).unwrap();
+        let rms = (id.relative_errors.iter().map(|r| r * r).sum::<f64>() / id.relative_errors.len() as f64).sqrt();
+        println!("recovered {:?}, rms {rms:e}, starts at best {}", id.jc, id.starts_at_best);
+        // The data are exact, so the fit must reproduce them and return the generating parameters.
+        assert!(rms < 1e-4, "rms relative error {rms}");
+        for (name, got, want) in [
+            ("A", id.jc.a_pa, truth.a_pa),
+            ("B", id.jc.b_pa, truth.b_pa),
+            ("n", id.jc.n, truth.n),
+            ("C", id.jc.c, truth.c),
+            ("m", id.jc.m, truth.m),
+        ] {
+            assert!((got / want - 1.0).abs() < 0.02, "{name}: got {got}, want {want}");
+        }
+    }
+
+    #[test]
+    fn runs_on_the_four_ivester_cases_and_lowers_the_force_error() {
+        // Jaspers' set under-predicts the measured forces by 6-26 % (Lalwani et al. 2009 table); the joint
+        // fit within the aisi1045.toml bounds must do better than that set on the same residuals.
+        let m = aisi1045();
+        let opts = options();
+        let tests = ivester_cases();
+        let bounds =
+            JcBounds { a_mpa: [100.0, 1500.0], b_mpa: [50.0, 1500.0], n: [0.05, 0.6], c: [0.001, 0.1], m: [0.6, 1.4] };
+        let problem = JointOxleyProblem::new(&m, &tests, CONSTANTS, &opts).unwrap();
+        let jaspers = DVector::from_vec(vec![553.1, 600.8, 0.234, 0.0134, 1.0]);
+        let mut r = DVector::zeros(problem.residual_count());
+        problem.residuals(&jaspers, &mut r).unwrap();
+        let ssr_jaspers = r.norm_squared();
+        let id = identify_oxley(&m, &tests, &bounds, CONSTANTS, &opts, &MultistartOptions::new(4, 3)).unwrap();
+        let ssr = id.relative_errors.iter().map(|r| r * r).sum::<f64>();
+        println!(
+            "Ivester fit: {:?}\n  ssr {ssr:e} vs Jaspers {ssr_jaspers:e}, at bounds {:?}",
+            id.jc, id.statistics.at_bounds
+        );
+        assert_eq!(id.observations.len(), 8);
+        assert!(ssr < 0.5 * ssr_jaspers, "ssr {ssr} vs Jaspers {ssr_jaspers}");
+    }
+}
