@@ -11,6 +11,7 @@
 
 pub mod dpzd_fit;
 pub mod error;
+pub mod joint;
 pub mod lm;
 pub mod multistart;
 
