@@ -142,7 +142,7 @@ fn convert(
     law: &RawLaw,
     units: &[(&str, f64)],
 ) -> Result<TempPolynomial, InputError> {
-    let line = toml_key_line(text, field.rsplit('.').next().unwrap_or(field));
+    let line = toml_key_line(text, field);
     let factor = units.iter().find(|(u, _)| *u == law.unit).map(|(_, f)| *f).ok_or_else(|| {
         let allowed: Vec<&str> = units.iter().map(|(u, _)| *u).collect();
         InputError::new(
@@ -153,9 +153,63 @@ fn convert(
             format!("unknown unit; expected one of {allowed:?}"),
         )
     })?;
-    TempPolynomial::new(law.coefficients.clone()).map(|p| p.scaled(factor)).map_err(|e| {
-        InputError::new(path, line, &format!("{field}.coefficients"), format!("{:?}", law.coefficients), e.to_string())
-    })
+    let coefficients_line = toml_key_line(text, &format!("{field}.coefficients")).or(line);
+    let poly = TempPolynomial::new(law.coefficients.clone()).map(|p| p.scaled(factor)).map_err(|e| {
+        InputError::new(
+            path,
+            coefficients_line,
+            &format!("{field}.coefficients"),
+            format!("{:?}", law.coefficients),
+            e.to_string(),
+        )
+    })?;
+    // Huge but finite coefficients can still overflow once evaluated or scaled to SI.
+    if let Some(bad) = poly.coefficients().iter().position(|c| !c.is_finite()) {
+        return Err(InputError::new(
+            path,
+            coefficients_line,
+            &format!("{field}.coefficients"),
+            format!("{:?}", law.coefficients),
+            format!("coefficient {bad} overflows when converted from {} to SI", law.unit),
+        ));
+    }
+    Ok(poly)
+}
+
+/// Checks that a law is finite and positive over `[from, to]` degC (sampled every 10 K, like
+/// [`cutcal_model::ThermalProperties::validate`]), with the error located at the law.
+fn check_positive(
+    path: &Path,
+    text: &str,
+    field: &str,
+    law: &TempPolynomial,
+    unit: &str,
+    (from, to): (f64, f64),
+) -> Result<(), InputError> {
+    let steps = ((to - from) / 10.0).ceil().clamp(1.0, 1e5) as usize;
+    for i in 0..=steps {
+        let t = from + (to - from) * i as f64 / steps as f64;
+        let v = law.value(t);
+        if !(v.is_finite() && v > 0.0) {
+            return Err(InputError::new(
+                path,
+                toml_key_line(text, field),
+                field,
+                format!("{v:e} {unit} at {t:.1} degC"),
+                format!("must be positive over the thermal range [{from}, {to}] degC"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Checks that a scalar read from TOML is finite (TOML allows `nan`, `inf` and overflowing literals).
+fn check_finite(path: &Path, text: &str, field: &str, value: f64) -> Result<(), InputError> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(InputError::new(path, toml_key_line(text, field), field, value, "must be a finite number"))
+    }
 }
 
 /// Reads and validates a material file.
@@ -163,24 +217,85 @@ fn convert(
 /// Returns a located error for TOML syntax, unknown fields or units, and non-physical values.
 pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
     let text = read_text(path)?;
-    let raw: RawMaterial = parse_toml(path, &text)?;
+    parse_material(path, &text)
+}
+
+/// Parses and validates material TOML text (`path` is used in messages and kept in the result).
+///
+/// Returns a located error (line, dotted field, value) for TOML syntax, unknown fields or units,
+/// NaN/infinite numbers, temperatures out of order (room below the validity range's top, which is
+/// at most melting), thermal laws that are not positive over their range, inverted or negative
+/// bounds, and out-of-range DPZD, elastic and interface settings.
+pub fn parse_material(path: &Path, text: &str) -> Result<MaterialFile, InputError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let raw: RawMaterial = parse_toml(path, text)?;
+    check_finite(path, text, "melting_c", raw.melting_c)?;
+    check_finite(path, text, "room_c", raw.room_c)?;
+    if raw.room_c <= -273.15 {
+        return Err(InputError::new(
+            path,
+            toml_key_line(text, "room_c"),
+            "room_c",
+            raw.room_c,
+            "must be above absolute zero (-273.15 degC)",
+        ));
+    }
+    if raw.melting_c <= raw.room_c {
+        return Err(InputError::new(
+            path,
+            toml_key_line(text, "room_c"),
+            "room_c",
+            raw.room_c,
+            format!(
+                "{}: melting temperature {} degC must exceed room temperature {} degC",
+                raw.name, raw.melting_c, raw.room_c
+            ),
+        ));
+    }
     let t = &raw.thermal;
-    let k = convert(path, &text, "thermal.conductivity", &t.conductivity, &[("W/(m K)", 1.0)])?;
+    check_finite(path, text, "thermal.valid_from_c", t.valid_from_c)?;
+    check_finite(path, text, "thermal.valid_to_c", t.valid_to_c)?;
+    if t.valid_from_c >= t.valid_to_c {
+        return Err(InputError::new(
+            path,
+            toml_key_line(text, "thermal.valid_from_c"),
+            "thermal.valid_from_c",
+            t.valid_from_c,
+            format!("must be below thermal.valid_to_c = {} degC", t.valid_to_c),
+        ));
+    }
+    if raw.room_c >= t.valid_to_c || t.valid_to_c > raw.melting_c {
+        return Err(InputError::new(
+            path,
+            toml_key_line(text, "thermal.valid_to_c"),
+            "thermal.valid_to_c",
+            t.valid_to_c,
+            format!("must lie in (room_c = {}, melting_c = {}] degC", raw.room_c, raw.melting_c),
+        ));
+    }
+    let range = (t.valid_from_c, t.valid_to_c);
+    let k = convert(path, text, "thermal.conductivity", &t.conductivity, &[("W/(m K)", 1.0)])?;
+    check_positive(path, text, "thermal.conductivity", &k, "W/(m K)", range)?;
     let density_units = [("g/cm^3", 1e3), ("kg/m^3", 1.0)];
     let (rho_cp, density) = match (&t.rho_cp, &t.density, &t.specific_heat) {
-        (Some(rc), Some(d), None) => (
-            convert(path, &text, "thermal.rho_cp", rc, &[("J/(cm^3 K)", 1e6), ("J/(m^3 K)", 1.0)])?,
-            convert(path, &text, "thermal.density", d, &density_units)?,
-        ),
+        (Some(rc), Some(d), None) => {
+            let rc = convert(path, text, "thermal.rho_cp", rc, &[("J/(cm^3 K)", 1e6), ("J/(m^3 K)", 1.0)])?;
+            let d = convert(path, text, "thermal.density", d, &density_units)?;
+            check_positive(path, text, "thermal.rho_cp", &rc, "J/(m^3 K)", range)?;
+            check_positive(path, text, "thermal.density", &d, "kg/m^3", range)?;
+            (rc, d)
+        }
         (None, Some(d), Some(cp)) => {
-            let d = convert(path, &text, "thermal.density", d, &density_units)?;
-            let cp = convert(path, &text, "thermal.specific_heat", cp, &[("J/(g K)", 1e3), ("J/(kg K)", 1.0)])?;
+            let d = convert(path, text, "thermal.density", d, &density_units)?;
+            let cp = convert(path, text, "thermal.specific_heat", cp, &[("J/(g K)", 1e3), ("J/(kg K)", 1.0)])?;
+            check_positive(path, text, "thermal.density", &d, "kg/m^3", range)?;
+            check_positive(path, text, "thermal.specific_heat", &cp, "J/(kg K)", range)?;
             (d.product(&cp), d)
         }
         _ => {
             return Err(InputError::new(
                 path,
-                None,
+                toml_key_line(text, "thermal"),
                 "thermal",
                 "",
                 "give either density and specific_heat, or rho_cp and density",
@@ -190,8 +305,28 @@ pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
     let yield_strength = raw
         .yield_strength
         .as_ref()
-        .map(|y| convert(path, &text, "yield_strength", y, &[("MPa", 1e6), ("Pa", 1.0)]))
+        .map(|y| convert(path, text, "yield_strength", y, &[("MPa", 1e6), ("Pa", 1.0)]))
         .transpose()?;
+    if let Some(e) = &raw.elastic {
+        if !(e.youngs_gpa.is_finite() && e.youngs_gpa > 0.0 && e.youngs_gpa <= 2000.0) {
+            return Err(InputError::new(
+                path,
+                toml_key_line(text, "elastic.youngs_gpa"),
+                "elastic.youngs_gpa",
+                e.youngs_gpa,
+                "must satisfy 0 < E <= 2000 GPa",
+            ));
+        }
+        if !(e.poisson.is_finite() && e.poisson > -1.0 && e.poisson < 0.5) {
+            return Err(InputError::new(
+                path,
+                toml_key_line(text, "elastic.poisson"),
+                "elastic.poisson",
+                e.poisson,
+                "must satisfy -1 < nu < 0.5",
+            ));
+        }
+    }
     let material = Material {
         name: raw.name.clone(),
         thermal: ThermalProperties {
@@ -206,25 +341,23 @@ pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
         room_c: raw.room_c,
         elastic: raw.elastic.as_ref().map(|e| Elastic { youngs_pa: e.youngs_gpa * 1e9, poisson: e.poisson }),
     };
+    // The checks above locate every rule of `Material::validate`; this is the model's own backstop.
     material.validate().map_err(|e| {
         let field = match &e {
             cutcal_model::ModelError::OutOfRange { field, .. } => field.clone(),
             _ => "material".into(),
         };
-        InputError::new(path, toml_key_line(&text, &field), &field, "", e.to_string())
+        InputError::new(path, toml_key_line(text, &field), &field, "", e.to_string())
     })?;
-    if material.room_c >= material.thermal.valid_to_c || material.thermal.valid_to_c > material.melting_c {
-        return Err(InputError::new(
-            path,
-            toml_key_line(&text, "valid_to_c"),
-            "thermal.valid_to_c",
-            material.thermal.valid_to_c,
-            format!("must lie in (room_c = {}, melting_c = {}] degC", material.room_c, material.melting_c),
-        ));
-    }
     if let Some(d) = &raw.dpzd {
         if !(d.r.is_finite() && d.r > 0.0 && d.r <= 20.0) {
-            return Err(InputError::new(path, toml_key_line(&text, "r"), "dpzd.r", d.r, "must satisfy 0 < r <= 20"));
+            return Err(InputError::new(
+                path,
+                toml_key_line(text, "dpzd.r"),
+                "dpzd.r",
+                d.r,
+                "must satisfy 0 < r <= 20",
+            ));
         }
         if !(d.rho_cp_original_j_per_cm3_k.is_finite()
             && d.rho_cp_original_j_per_cm3_k > 0.1
@@ -232,24 +365,53 @@ pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
         {
             return Err(InputError::new(
                 path,
-                toml_key_line(&text, "rho_cp_original_j_per_cm3_k"),
+                toml_key_line(text, "dpzd.rho_cp_original_j_per_cm3_k"),
                 "dpzd.rho_cp_original_j_per_cm3_k",
                 d.rho_cp_original_j_per_cm3_k,
                 "must satisfy 0.1 < rho*Cp < 100 J/(cm^3 K)",
             ));
         }
+        if d.identification_test.trim().is_empty() {
+            return Err(InputError::new(
+                path,
+                toml_key_line(text, "dpzd.identification_test"),
+                "dpzd.identification_test",
+                "",
+                "must name a test id of the tests CSV",
+            ));
+        }
     }
     if let Some(b) = &raw.bounds {
         for (name, [lo, hi]) in [("a_mpa", b.a_mpa), ("b_mpa", b.b_mpa), ("n", b.n), ("c", b.c), ("m", b.m)] {
-            if !(lo.is_finite() && hi.is_finite() && lo <= hi && lo >= 0.0) {
+            let field = format!("bounds.{name}");
+            let line = toml_key_line(text, &field);
+            if !(lo.is_finite() && hi.is_finite() && lo >= 0.0) {
                 return Err(InputError::new(
                     path,
-                    toml_key_line(&text, name),
-                    &format!("bounds.{name}"),
+                    line,
+                    &field,
                     format!("[{lo}, {hi}]"),
-                    "bounds must be finite, non-negative and ordered low <= high",
+                    "bounds must be finite and non-negative",
                 ));
             }
+            if lo > hi {
+                return Err(InputError::new(
+                    path,
+                    line,
+                    &field,
+                    format!("[{lo}, {hi}]"),
+                    "bounds are inverted: write [low, high] with low <= high",
+                ));
+            }
+        }
+        if b.m[0] <= 0.0 {
+            return Err(InputError::new(
+                path,
+                toml_key_line(text, "bounds.m"),
+                "bounds.m",
+                format!("[{}, {}]", b.m[0], b.m[1]),
+                "the lower bound of m must be positive (m = 0 removes thermal softening)",
+            ));
         }
     }
     let interface = raw
@@ -263,13 +425,26 @@ pub fn load_material(path: &Path) -> Result<MaterialFile, InputError> {
                 RawFriction::Coulomb { mu } => Friction::Coulomb { mu },
             };
             friction.validate().map_err(|e| {
-                InputError::new(path, toml_key_line(&text, "friction"), "interface.friction", "", e.to_string())
+                let value = match &e {
+                    cutcal_model::ModelError::OutOfRange { field, value, .. } if field == "beta_per_pa" => {
+                        format!("beta_per_mpa = {}", value * 1e6)
+                    }
+                    cutcal_model::ModelError::OutOfRange { field, value, .. } => format!("{field} = {value}"),
+                    _ => String::new(),
+                };
+                InputError::new(
+                    path,
+                    toml_key_line(text, "interface.friction"),
+                    "interface.friction",
+                    value,
+                    e.to_string(),
+                )
             })?;
             let h = i.heat_transfer_kw_per_m2_k;
             if !(h.is_finite() && h > 0.0) {
                 return Err(InputError::new(
                     path,
-                    toml_key_line(&text, "heat_transfer_kw_per_m2_k"),
+                    toml_key_line(text, "interface.heat_transfer_kw_per_m2_k"),
                     "interface.heat_transfer_kw_per_m2_k",
                     h,
                     "must be a positive number of kW/(m^2 K)",

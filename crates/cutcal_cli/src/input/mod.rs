@@ -16,6 +16,8 @@ pub struct InputError {
     pub file: PathBuf,
     /// 1-based line, when known.
     pub line: Option<usize>,
+    /// 1-based character column in the line, when known (TOML syntax errors).
+    pub column: Option<usize>,
     /// The field or column.
     pub field: String,
     /// The offending value as written (may be empty).
@@ -29,6 +31,9 @@ impl fmt::Display for InputError {
         write!(f, "{}", self.file.display())?;
         if let Some(l) = self.line {
             write!(f, ":{l}")?;
+            if let Some(c) = self.column {
+                write!(f, ":{c}")?;
+            }
         }
         write!(f, ": field `{}`", self.field)?;
         if !self.value.is_empty() {
@@ -51,6 +56,7 @@ impl InputError {
         Self {
             file: file.to_path_buf(),
             line,
+            column: None,
             field: field.to_string(),
             value: value.to_string(),
             reason: reason.into(),
@@ -62,17 +68,28 @@ impl InputError {
 pub(crate) fn read_text(path: &Path) -> Result<String, InputError> {
     let bytes =
         std::fs::read(path).map_err(|e| InputError::new(path, None, "(file)", "", format!("cannot read: {e}")))?;
+    decode_text(path, bytes)
+}
+
+/// Decodes file contents as UTF-8 (a leading byte-order mark is dropped) and rejects empty files.
+///
+/// Returns an error naming the line and byte of the first invalid UTF-8 sequence, or saying the
+/// file is empty or blank.
+pub fn decode_text(path: &Path, bytes: Vec<u8>) -> Result<String, InputError> {
     let text = String::from_utf8(bytes).map_err(|e| {
-        let upto = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let good = e.utf8_error().valid_up_to();
+        let upto = &e.as_bytes()[..good];
         let line = upto.iter().filter(|b| **b == b'\n').count() + 1;
-        InputError::new(
-            path,
-            Some(line),
-            "(text)",
-            "",
-            format!("not valid UTF-8 (byte {})", e.utf8_error().valid_up_to()),
-        )
+        // The prefix is valid UTF-8 by construction; count characters, not bytes, for the column.
+        let valid = std::str::from_utf8(upto).unwrap_or_default();
+        let column = valid.rsplit('\n').next().unwrap_or_default().chars().count() + 1;
+        let bad = e.as_bytes()[good..].iter().take(4).map(|b| format!("{b:#04x}")).collect::<Vec<_>>().join(" ");
+        InputError::new(path, Some(line), "(text)", bad, format!("not valid UTF-8 at byte {good} (column {column})"))
     })?;
+    let text = match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_string(),
+        None => text,
+    };
     if text.trim().is_empty() {
         return Err(InputError::new(path, None, "(file)", "", "the file is empty"));
     }
@@ -85,21 +102,104 @@ pub(crate) fn line_of(text: &str, offset: usize) -> usize {
 }
 
 /// Finds the line where `key` is assigned in a TOML text (best effort, for located validation errors).
+///
+/// `key` may be a dotted path (`thermal.valid_to_c`, `bounds.n`, `yield_strength.coefficients`):
+/// the key is then looked for under its `[table]` header, or as an inline table entry
+/// (`density = { unit = ... }`) of its parent, or as the `[table]` header itself. A plain key is the
+/// first line assigning it in any table.
 pub(crate) fn toml_key_line(text: &str, key: &str) -> Option<usize> {
-    text.lines()
-        .position(|l| {
-            let t = l.trim_start();
-            t.starts_with(key) && t[key.len()..].trim_start().starts_with('=')
-        })
-        .map(|i| i + 1)
+    let mut table = String::new();
+    // Best match so far: (length of the matched path prefix, line).
+    let mut best: Option<(usize, usize)> = None;
+    let mut consider = |len: usize, line: usize| {
+        if best.map_or(true, |(l, _)| len > l) {
+            best = Some((len, line));
+        }
+    };
+    for (i, raw) in text.lines().enumerate() {
+        let t = raw.trim_start();
+        if let Some(h) = t.strip_prefix('[') {
+            let name = h.trim_start_matches('[').split(']').next().unwrap_or("").trim();
+            table = name.to_string();
+            if key == table || key.starts_with(&format!("{table}.")) {
+                consider(table.len(), i + 1);
+            }
+            continue;
+        }
+        let Some((lhs, _)) = t.split_once('=') else { continue };
+        let lhs = lhs.trim().trim_matches('"');
+        if lhs.is_empty() || lhs.starts_with('#') {
+            continue;
+        }
+        let full = if table.is_empty() { lhs.to_string() } else { format!("{table}.{lhs}") };
+        if full == key || (!key.contains('.') && lhs == key) {
+            return Some(i + 1);
+        }
+        if key.starts_with(&format!("{full}.")) {
+            consider(full.len() + 1, i + 1);
+        }
+    }
+    best.map(|(_, line)| line)
 }
 
-/// Parses TOML into `T` with a located error.
+/// Parses TOML into `T` with a located error (line and column of the offending text).
 pub(crate) fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T, InputError> {
     toml::from_str(text).map_err(|e| {
-        let line = e.span().map(|s| line_of(text, s.start));
-        let value =
-            e.span().map(|s| text[s.clone()].lines().next().unwrap_or("").trim().to_string()).unwrap_or_default();
-        InputError::new(path, line, "(toml)", value, e.message().to_string())
+        let span = e.span().map(|s| s.start.min(text.len())..s.end.min(text.len()));
+        let line = span.as_ref().map(|s| line_of(text, s.start));
+        let value = span
+            .as_ref()
+            .and_then(|s| text.get(s.clone()))
+            .map(|v| v.lines().next().unwrap_or("").trim().chars().take(80).collect::<String>())
+            .unwrap_or_default();
+        let mut err = InputError::new(path, line, "(toml)", value, e.message().trim().to_string());
+        err.column = span.as_ref().map(|s| column_of(text, s.start));
+        err
     })
+}
+
+/// 1-based character column of a byte offset in `text`.
+pub(crate) fn column_of(text: &str, offset: usize) -> usize {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    text[start..offset].chars().count() + 1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MATERIAL: &str = "name = \"x\"\nroom_c = 20\n[thermal]\nvalid_to_c = 1\ndensity = { unit = \"g\" }\n\
+                            [bounds]\nn = [0, 1]\n[yield_strength]\nunit = \"MPa\"\n";
+
+    #[test]
+    fn toml_key_line_follows_tables_and_inline_tables() {
+        // Line numbers counted in MATERIAL above.
+        assert_eq!(toml_key_line(MATERIAL, "room_c"), Some(2));
+        assert_eq!(toml_key_line(MATERIAL, "thermal.valid_to_c"), Some(4));
+        assert_eq!(toml_key_line(MATERIAL, "thermal.density.unit"), Some(5));
+        assert_eq!(toml_key_line(MATERIAL, "bounds.n"), Some(7));
+        assert_eq!(toml_key_line(MATERIAL, "yield_strength.coefficients"), Some(8));
+        assert_eq!(toml_key_line(MATERIAL, "yield_strength.unit"), Some(9));
+        assert_eq!(toml_key_line(MATERIAL, "elastic.poisson"), None);
+    }
+
+    #[test]
+    fn decode_text_locates_bad_utf8_and_drops_a_bom() {
+        let e = decode_text(Path::new("f"), b"ab\ncd\xe9f".to_vec()).unwrap_err();
+        assert_eq!((e.line, e.value.as_str()), (Some(2), "0xe9 0x66"));
+        assert!(e.reason.contains("byte 5 (column 3)"), "{e}");
+        assert_eq!(decode_text(Path::new("f"), b"\xef\xbb\xbfx".to_vec()).unwrap(), "x");
+        assert!(decode_text(Path::new("f"), b" \n\t".to_vec()).unwrap_err().reason.contains("empty"));
+    }
+
+    #[test]
+    fn toml_syntax_errors_carry_line_and_column() {
+        let e = parse_toml::<toml::Table>(Path::new("f.toml"), "a = 1\nb = = 2\n").unwrap_err();
+        assert_eq!((e.line, e.column), (Some(2), Some(5)));
+        assert!(e.to_string().starts_with("f.toml:2:5: field `(toml)`"), "{e}");
+    }
 }

@@ -11,6 +11,7 @@
 use std::collections::HashSet;
 use std::path::Path;
 
+use cutcal_model::dpzd::ShearPlaneState;
 use cutcal_model::CuttingTest;
 
 use super::{read_text, InputError};
@@ -36,25 +37,62 @@ pub fn load_tests(path: &Path) -> Result<Vec<CuttingTest>, InputError> {
 }
 
 /// Parses test CSV text (`path` is only used in messages).
+///
+/// Returns a located error (line, column name, value) for CSV structure (missing, unknown or
+/// duplicate columns, ragged rows), empty or non-numeric cells, NaN/infinite or out-of-range values,
+/// duplicate test ids, a chip ratio with no shear angle, and forces with no positive shear-plane
+/// force (Eq 9) at the measured shear angle.
 pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut rdr =
         csv::ReaderBuilder::new().comment(Some(b'#')).trim(csv::Trim::All).flexible(false).from_reader(text.as_bytes());
     let csv_err = |e: csv::Error| {
         let line = e.position().map(|p| p.line() as usize);
-        InputError::new(path, line, "(csv)", "", e.to_string())
+        match e.kind() {
+            csv::ErrorKind::UnequalLengths { expected_len, len, .. } => InputError::new(
+                path,
+                line,
+                "(row)",
+                format!("{len} cells"),
+                format!("the header has {expected_len} columns; every row needs one cell per column"),
+            ),
+            _ => InputError::new(path, line, "(csv)", "", e.to_string()),
+        }
     };
     let headers = rdr.headers().map_err(csv_err)?.clone();
     let header_line =
         text.lines().position(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty()).map(|i| i + 1);
-    for h in headers.iter() {
+    if headers.is_empty() {
+        return Err(InputError::new(path, None, "(header)", "", "no header row (the file has only comments)"));
+    }
+    for (i, h) in headers.iter().enumerate() {
+        if h.is_empty() {
+            return Err(InputError::new(
+                path,
+                header_line,
+                &format!("(column {})", i + 1),
+                "",
+                "empty column name (a trailing comma in the header?)",
+            ));
+        }
         if !REQUIRED.contains(&h) && !OPTIONAL.contains(&h) {
+            let stem = h.split('_').next().unwrap_or(h);
+            let hint = REQUIRED
+                .iter()
+                .chain(OPTIONAL.iter())
+                .find(|k| k.split('_').next() == Some(stem))
+                .map(|k| format!(" (did you mean `{k}`? units are part of the column name)"))
+                .unwrap_or_default();
             return Err(InputError::new(
                 path,
                 header_line,
                 h,
                 "",
-                format!("unknown column; expected {REQUIRED:?} and optionally {OPTIONAL:?}"),
+                format!("unknown column{hint}; expected {REQUIRED:?} and optionally {OPTIONAL:?}"),
             ));
+        }
+        if headers.iter().take(i).any(|earlier| earlier == h) {
+            return Err(InputError::new(path, header_line, h, "", format!("duplicate column (column {})", i + 1)));
         }
     }
     for r in REQUIRED {
@@ -144,10 +182,18 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
         t = t.with_tool_condition(re.map(|r| r * 1e-6), None).map_err(located("edge_radius_um", re))?;
         t = t.with_tool_condition(re.map(|r| r * 1e-6), vb.map(|v| v * 1e-3)).map_err(located("flank_wear_mm", vb))?;
         if let Some(o) = num("order", false)? {
-            if o < 0.0 || o.fract() != 0.0 || o > 1e9 {
+            if o < 0.0 || o.fract().abs() > 0.0 || o > 1e9 {
                 return Err(InputError::new(path, line, "order", o, "must be a non-negative whole number"));
             }
             t.order = Some(o as u32);
+        }
+        if let (Some(_), Some(_), Some(_)) =
+            (t.measured.cutting_force_n_per_m, t.measured.feed_force_n_per_m, t.measured.chip_thickness_m)
+        {
+            // Eq 9 needs a positive shear-plane force; say so here, at the row, not deep in a solve.
+            if let Err(e) = ShearPlaneState::from_test(&t) {
+                return Err(InputError::new(path, line, ft_name, cell(ft_name), e.to_string()));
+            }
         }
         tests.push(t);
     }
@@ -195,5 +241,32 @@ mod tests {
         assert_eq!((e.line, e.field.as_str()), (Some(3), "test"));
         let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg\n1,NaN,0.15,1,0\n").unwrap_err();
         assert_eq!(e.field, "speed_m_min");
+    }
+
+    #[test]
+    fn structure_errors_are_located() {
+        let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg,uncut_mm\n1,200,0.15,1,0,0.1\n").unwrap_err();
+        assert_eq!((e.line, e.field.as_str()), (Some(1), "uncut_mm"));
+        assert!(e.reason.contains("duplicate column (column 6)"), "{e}");
+        let e = parse("test,speed_m_s,uncut_mm,width_mm,rake_deg\n1,3,0.15,1,0\n").unwrap_err();
+        assert!(e.reason.contains("did you mean `speed_m_min`"), "{e}");
+        let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg\n1,200,0.15,1\n").unwrap_err();
+        assert_eq!((e.line, e.field.as_str(), e.value.as_str()), (Some(2), "(row)", "4 cells"));
+        let e = parse("# only a comment\n").unwrap_err();
+        assert_eq!(e.field, "(header)");
+        // A byte-order mark before the header is not part of the first column name.
+        assert_eq!(parse("\u{feff}test,speed_m_min,uncut_mm,width_mm,rake_deg\n1,200,0.15,1,0\n").unwrap().len(), 1);
+    }
+
+    #[test]
+    fn feed_force_too_large_for_the_shear_angle_is_located_at_ft() {
+        // C38 test 3 (Table 6) with Ft raised to 600 N/mm: Fc cos(phi) - Ft sin(phi) =
+        // 224 cos(25.53 deg) - 600 sin(25.53 deg) = 202.2 - 258.6 < 0.
+        let e = parse(
+            "test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm,ft_n_per_mm,chip_mm\n3,240,0.075,1.95,0,224,600,0.157\n",
+        )
+        .unwrap_err();
+        assert_eq!((e.line, e.field.as_str(), e.value.as_str()), (Some(2), "ft_n_per_mm", "600"));
+        assert!(e.reason.contains("positive shear force"), "{e}");
     }
 }
