@@ -6,7 +6,17 @@
 #![warn(missing_docs)]
 
 pub mod error;
+pub mod fit;
 pub mod lite;
 pub mod stats;
 
 pub use error::DiagnoseError;
+pub mod diagnose;
+pub mod mechanism;
+pub mod report;
+pub mod simulator;
+
+pub use diagnose::{diagnose, Config};
+pub use mechanism::MechanismId;
+pub use report::{Report, Verdict};
+pub use simulator::{FixedSimulation, LiteSimulator, Prediction, Simulator};

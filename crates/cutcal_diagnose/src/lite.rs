@@ -123,7 +123,12 @@ struct State {
 ///
 /// Returns an error if no shear angle in (5, 45) deg satisfies the interface condition or a
 /// temperature reaches melting.
-pub fn solve(test: &CuttingTest, jc: &JcParams, k: &LiteConstants, hooks: &Hooks) -> Result<LiteSolution, DiagnoseError> {
+pub fn solve(
+    test: &CuttingTest,
+    jc: &JcParams,
+    k: &LiteConstants,
+    hooks: &Hooks,
+) -> Result<LiteSolution, DiagnoseError> {
     let err = |e: ModelError| DiagnoseError::Model { test: test.id.clone(), source: e };
     let eval = |phi: f64| evaluate(test, jc, k, hooks, phi);
     // Scan for the first sign change of tau_int - m_f k_chip, then refine by the Illinois method.
@@ -268,7 +273,15 @@ fn evaluate(test: &CuttingTest, jc: &JcParams, k: &LiteConstants, hooks: &Hooks,
         return None;
     }
     Some(State {
-        sol: LiteSolution { fc_n_per_m: fc, ft_n_per_m: ft, chip_m: t2, t_ab_c: t_ab, t_int_c: t_int, phi_rad: phi, beta },
+        sol: LiteSolution {
+            fc_n_per_m: fc,
+            ft_n_per_m: ft,
+            chip_m: t2,
+            t_ab_c: t_ab,
+            t_int_c: t_int,
+            phi_rad: phi,
+            beta,
+        },
         residual,
     })
 }
@@ -307,7 +320,7 @@ fn illinois(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> Option<f64> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     pub(crate) fn aisi1045() -> (JcParams, LiteConstants) {

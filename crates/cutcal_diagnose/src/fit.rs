@@ -1,0 +1,268 @@
+//! Joint least-squares fits of the baseline parameters and mechanism parameters, on the bounded
+//! Levenberg-Marquardt of `cutcal_ident`.
+//!
+//! Residuals are log-ratios in noise units, `e = ln(y_measured / y_model) / s_j` (design note
+//! Sec 3.1, multiplicative noise), followed by the weak-prior pseudo-residuals of the baseline.
+
+use cutcal_ident::lm::{minimise, Bounds, LmOptions, Problem};
+use cutcal_ident::IdentError;
+use cutcal_model::CuttingTest;
+use nalgebra::{DMatrix, DVector};
+
+use crate::error::DiagnoseError;
+use crate::lite::Hooks;
+use crate::mechanism::{self, Context, MechanismId};
+use crate::simulator::{Prediction, Simulator};
+
+/// The three outputs.
+pub const OUTPUTS: [&str; 3] = ["fc", "ft", "tc"];
+
+/// One observation: test index, output index (0 Fc, 1 Ft, 2 tc) and the measured value (N/m or m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Obs {
+    /// Index into the tests.
+    pub test: usize,
+    /// Output index.
+    pub output: usize,
+    /// Measured value.
+    pub value: f64,
+}
+
+/// The observations of a set of tests.
+#[must_use]
+pub fn observations(tests: &[CuttingTest]) -> Vec<Obs> {
+    let mut v = Vec::new();
+    for (i, t) in tests.iter().enumerate() {
+        let m = t.measured;
+        for (j, y) in [m.cutting_force_n_per_m, m.feed_force_n_per_m, m.chip_thickness_m].into_iter().enumerate() {
+            if let Some(y) = y.filter(|y| *y > 0.0) {
+                v.push(Obs { test: i, output: j, value: y });
+            }
+        }
+    }
+    v
+}
+
+/// Value of output `j` of a prediction.
+#[must_use]
+pub fn output(p: &Prediction, j: usize) -> f64 {
+    match j {
+        0 => p.fc_n_per_m,
+        1 => p.ft_n_per_m,
+        _ => p.chip_m,
+    }
+}
+
+/// A model: the simulator's baseline plus a list of mechanisms (parameter layout: baseline first,
+/// then each mechanism's fitted parameters in order).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spec {
+    /// Mechanisms switched on.
+    pub mechanisms: Vec<MechanismId>,
+    /// Their context (wear state, BUE onset).
+    pub ctx: Context,
+}
+
+/// Number of fitted parameters of a mechanism (the BUE onset is chosen on a grid, not fitted).
+#[must_use]
+pub fn fitted_len(id: MechanismId) -> usize {
+    match id {
+        MechanismId::BuiltUpEdge => 1,
+        _ => mechanism::info(id).params.len(),
+    }
+}
+
+/// Predictions of `spec` at parameters `x` for `tests`.
+///
+/// Returns an error if the simulator fails.
+pub fn predict(
+    sim: &dyn Simulator,
+    tests: &[CuttingTest],
+    spec: &Spec,
+    ctx: &Context,
+    x: &[f64],
+) -> Result<Vec<Prediction>, DiagnoseError> {
+    let p = sim.baseline_params().len();
+    let mut hooks = vec![Hooks::NEUTRAL; tests.len()];
+    let mut at = p;
+    for id in &spec.mechanisms {
+        let d = fitted_len(*id);
+        mechanism::set_hooks(*id, &x[at..at + d], tests, ctx, sim, &mut hooks);
+        at += d;
+    }
+    let mut preds = sim.simulate(tests, &x[..p], &hooks)?;
+    let mut at = p;
+    for id in &spec.mechanisms {
+        let d = fitted_len(*id);
+        mechanism::correct(*id, &x[at..at + d], tests, ctx, sim, &mut preds);
+        at += d;
+    }
+    Ok(preds)
+}
+
+/// Noise-unit residuals `ln(y/yhat)/s_j` of `obs` against `preds`.
+#[must_use]
+pub fn residuals(obs: &[Obs], preds: &[Prediction], noise: &[f64; 3]) -> Vec<f64> {
+    obs.iter().map(|o| (o.value / output(&preds[o.test], o.output)).ln() / noise[o.output]).collect()
+}
+
+/// Bounds, start and names of the parameter vector of `spec`.
+#[must_use]
+pub fn layout(sim: &dyn Simulator, spec: &Spec) -> (Vec<String>, Vec<f64>, Vec<f64>, Vec<f64>) {
+    let (mut names, mut lo, mut hi, mut start) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for ps in sim.baseline_params() {
+        names.push(ps.name.clone());
+        lo.push(ps.lower);
+        hi.push(ps.upper);
+        start.push(ps.start);
+    }
+    for id in &spec.mechanisms {
+        for pi in mechanism::info(*id).params.iter().take(fitted_len(*id)) {
+            names.push(format!("{}.{}", id.as_str(), pi.name));
+            lo.push(pi.lower);
+            hi.push(pi.upper);
+            // Start half-way between off and typical: inside the box, on the physical side.
+            start.push((0.5 * (pi.off + pi.typical)).clamp(pi.lower, pi.upper));
+        }
+    }
+    (names, lo, hi, start)
+}
+
+struct FitProblem<'a> {
+    sim: &'a dyn Simulator,
+    tests: &'a [CuttingTest],
+    obs: &'a [Obs],
+    spec: &'a Spec,
+    noise: [f64; 3],
+}
+
+impl Problem for FitProblem<'_> {
+    fn parameter_count(&self) -> usize {
+        self.sim.baseline_params().len() + self.spec.mechanisms.iter().map(|m| fitted_len(*m)).sum::<usize>()
+    }
+    fn residual_count(&self) -> usize {
+        self.obs.len() + self.sim.baseline_params().iter().filter(|p| p.prior_sd.is_some()).count()
+    }
+    fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
+        let x: Vec<f64> = p.iter().copied().collect();
+        let preds = predict(self.sim, self.tests, self.spec, &self.spec.ctx, &x).map_err(|e| match e {
+            DiagnoseError::Model { source, .. } => IdentError::Model(source),
+            other => IdentError::InvalidOptions(other.to_string()),
+        })?;
+        let r = residuals(self.obs, &preds, &self.noise);
+        for (i, v) in r.iter().enumerate() {
+            out[i] = *v;
+        }
+        let mut k = r.len();
+        for (i, ps) in self.sim.baseline_params().iter().enumerate() {
+            if let Some(sd) = ps.prior_sd {
+                out[k] = (x[i] - ps.start) / sd;
+                k += 1;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A fitted model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fit {
+    /// Parameters.
+    pub x: Vec<f64>,
+    /// Data residuals in noise units.
+    pub resid: Vec<f64>,
+    /// Sum of squared data residuals.
+    pub rss: f64,
+    /// Number of parameters (baseline + mechanisms).
+    pub k: usize,
+    /// Predictions at `x`.
+    pub preds: Vec<Prediction>,
+}
+
+/// Fits `spec` to `obs` from `start` (or the layout's start when `None`).
+///
+/// Returns an error if the model fails at the start point.
+pub fn fit(
+    sim: &dyn Simulator,
+    tests: &[CuttingTest],
+    obs: &[Obs],
+    spec: &Spec,
+    noise: &[f64; 3],
+    start: Option<&[f64]>,
+    max_iterations: usize,
+) -> Result<Fit, DiagnoseError> {
+    let (names, lo, hi, s0) = layout(sim, spec);
+    let x0: Vec<f64> = match start {
+        Some(s) if s.len() == s0.len() => s.iter().zip(lo.iter().zip(&hi)).map(|(v, (l, h))| v.clamp(*l, *h)).collect(),
+        _ => s0,
+    };
+    let x = if names.is_empty() {
+        Vec::new()
+    } else {
+        let problem = FitProblem { sim, tests, obs, spec, noise: *noise };
+        let bounds = Bounds::new(names, lo, hi).map_err(|e| DiagnoseError::Fit(e.to_string()))?;
+        let opts = LmOptions { max_iterations, gradient_tolerance: 1e-8, cost_tolerance: 1e-10, step_tolerance: 1e-9 };
+        match minimise(&problem, &bounds, &DVector::from_vec(x0.clone()), &opts) {
+            Ok(r) => r.params.iter().copied().collect(),
+            Err(IdentError::Underdetermined { .. }) => x0,
+            Err(e) => return Err(DiagnoseError::Fit(e.to_string())),
+        }
+    };
+    let preds = predict(sim, tests, spec, &spec.ctx, &x)?;
+    let resid = residuals(obs, &preds, noise);
+    let rss = resid.iter().map(|r| r * r).sum();
+    Ok(Fit { k: x.len(), x, resid, rss, preds })
+}
+
+/// Central-difference Jacobian of the data residuals (rows) with respect to the parameters
+/// `cols` of `x` (columns), steps `steps`.
+///
+/// Returns an error if the model fails at a perturbed point.
+#[allow(clippy::too_many_arguments)] // one call site per use; the arguments are one fit's state
+pub fn data_jacobian(
+    sim: &dyn Simulator,
+    tests: &[CuttingTest],
+    obs: &[Obs],
+    spec: &Spec,
+    noise: &[f64; 3],
+    x: &[f64],
+    cols: &[usize],
+    steps: &[f64],
+) -> Result<DMatrix<f64>, DiagnoseError> {
+    let mut j = DMatrix::zeros(obs.len(), cols.len());
+    for (c, (&k, &h)) in cols.iter().zip(steps).enumerate() {
+        let mut xp = x.to_vec();
+        xp[k] += h;
+        let rp = residuals(obs, &predict(sim, tests, spec, &spec.ctx, &xp)?, noise);
+        let mut xm = x.to_vec();
+        xm[k] -= h;
+        let rm = residuals(obs, &predict(sim, tests, spec, &spec.ctx, &xm)?, noise);
+        for i in 0..obs.len() {
+            j[(i, c)] = (rp[i] - rm[i]) / (2.0 * h);
+        }
+    }
+    Ok(j)
+}
+
+/// The part of the columns of `s` orthogonal to the column space of `j`: `(I - J J+) S`.
+#[must_use]
+pub fn project_out(j: &DMatrix<f64>, s: &DMatrix<f64>) -> DMatrix<f64> {
+    if j.ncols() == 0 {
+        return s.clone();
+    }
+    let svd = j.clone().svd(true, false);
+    let Some(u) = svd.u else { return s.clone() };
+    let smax = svd.singular_values.iter().fold(0.0f64, |a, b| a.max(*b));
+    let mut out = s.clone();
+    for (c, sv) in svd.singular_values.iter().enumerate() {
+        if *sv > 1e-9 * smax {
+            let uc = u.column(c);
+            for k in 0..s.ncols() {
+                let coef = uc.dot(&s.column(k));
+                let mut col = out.column_mut(k);
+                col.axpy(-coef, &uc, 1.0);
+            }
+        }
+    }
+    out
+}

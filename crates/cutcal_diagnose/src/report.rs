@@ -1,0 +1,305 @@
+//! The diagnosis report: the JSON keys of issue 6 plus supporting detail, and a plain-text rendering.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+use serde::{Deserialize, Serialize};
+
+/// The overall finding.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    /// A library mechanism is missing and passed every acceptance rule.
+    MissingPhysics,
+    /// No significant mismatch.
+    None,
+    /// Several mechanisms explain the mismatch equally well, or the design cannot validate one.
+    Ambiguous,
+    /// A significant mismatch that no library mechanism explains.
+    Unexplained,
+}
+
+impl Verdict {
+    /// The snake_case spelling.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Verdict::MissingPhysics => "missing_physics",
+            Verdict::None => "none",
+            Verdict::Ambiguous => "ambiguous",
+            Verdict::Unexplained => "unexplained",
+        }
+    }
+}
+
+/// Where the model and the recordings differ, per output.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Mismatch {
+    /// `fc`, `ft` or `tc`.
+    pub output: String,
+    /// Mean of (measured - model)/model, %.
+    pub bias_pct: f64,
+    /// The strongest trend of the relative residual against a covariate, or `none`.
+    pub trend: String,
+    /// Smallest (Holm-adjusted) p-value of the bias and trend tests.
+    pub p_value: f64,
+    /// Tests whose residual exceeds two noise standard deviations.
+    pub tests: Vec<String>,
+}
+
+/// A parameter estimate with its 95 % interval.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ParamValue {
+    /// Estimate.
+    pub value: f64,
+    /// Unit.
+    pub unit: String,
+    /// Lower end of the 95 % interval (clipped to the bounds).
+    pub ci_low: f64,
+    /// Upper end of the 95 % interval (clipped to the bounds).
+    pub ci_high: f64,
+}
+
+/// One refitted mechanism.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MechanismResult {
+    /// Library id.
+    pub id: String,
+    /// Whether it passed every acceptance rule.
+    pub accepted: bool,
+    /// Fitted parameters.
+    pub params: BTreeMap<String, ParamValue>,
+    /// AICc(with mechanism) - AICc(baseline); negative favours the mechanism.
+    pub delta_aicc: f64,
+    /// F-test p-value of the joint refit against the baseline (one-sided where the parameter is).
+    pub p_value: f64,
+    /// Leave-one-condition-out RMS (%, all outputs) of the baseline, when the design allows it.
+    pub heldout_rms_before: Option<f64>,
+    /// Leave-one-condition-out RMS (%, all outputs) with the mechanism.
+    pub heldout_rms_after: Option<f64>,
+    /// Share of the baseline misfit the mechanism removes in-sample.
+    pub explained_fraction: f64,
+    /// Share of the mechanism's signature the baseline parameters can absorb (linearised).
+    pub absorption: f64,
+    /// Score-test p-value from the screen.
+    pub screen_p_value: f64,
+    /// Why it was or was not accepted.
+    pub reason: String,
+}
+
+/// RMS of the relative error, % per output and over all.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OutputRms {
+    /// Cutting force.
+    pub fc: Option<f64>,
+    /// Feed force.
+    pub ft: Option<f64>,
+    /// Chip thickness.
+    pub tc: Option<f64>,
+    /// All outputs pooled.
+    pub all: f64,
+}
+
+/// Fit quality of one model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FitStats {
+    /// In-sample.
+    pub in_sample: OutputRms,
+    /// Leave-one-condition-out (nested for the "after" model), when there are >= 3 conditions.
+    pub loco: Option<OutputRms>,
+}
+
+/// Before (baseline) and after (selected mechanisms).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FitSummary {
+    /// Baseline.
+    pub before: FitStats,
+    /// With the selected mechanisms (equal to before when none is selected).
+    pub after: FitStats,
+}
+
+/// A named parameter value.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NamedValue {
+    /// Name.
+    pub name: String,
+    /// Value.
+    pub value: f64,
+}
+
+/// Residual of one observation before and after, % (measured - model)/model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ResidualRow {
+    /// Test id.
+    pub test: String,
+    /// `fc`, `ft` or `tc`.
+    pub output: String,
+    /// Uncut chip thickness, mm.
+    pub uncut_mm: f64,
+    /// Speed, m/min.
+    pub speed_m_min: f64,
+    /// Before, %.
+    pub before_pct: f64,
+    /// After, %.
+    pub after_pct: f64,
+}
+
+/// The global misfit test of the baseline with the assumed noise.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GlobalMisfit {
+    /// Sum of squared noise-unit residuals.
+    pub chi2: f64,
+    /// Degrees of freedom (observations - baseline parameters, at least 1).
+    pub dof: usize,
+    /// Chi-square upper-tail probability.
+    pub p_value: f64,
+}
+
+/// The decision thresholds in force.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Thresholds {
+    /// Family-wise false-positive rate aimed at.
+    pub family_alpha: f64,
+    /// Per-mechanism significance level (Bonferroni over the mechanisms tested).
+    pub per_mechanism_alpha: f64,
+    /// Number of mechanisms tested in the first round.
+    pub mechanisms_tested: usize,
+    /// Cosine above which two mechanisms' fitted corrections count as near-equivalent.
+    pub ambiguity_cosine: f64,
+    /// AICc difference below which a rival is near-equivalent.
+    pub ambiguity_delta_aicc: f64,
+}
+
+/// A mechanism that could not be tested on this design, and why.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NotTestable {
+    /// Id.
+    pub id: String,
+    /// Reason.
+    pub reason: String,
+}
+
+/// The full diagnosis report.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Report {
+    /// Overall verdict.
+    pub verdict: Verdict,
+    /// Located mismatch per output (baseline residuals).
+    pub mismatch: Vec<Mismatch>,
+    /// Refitted mechanisms, best first.
+    pub mechanisms: Vec<MechanismResult>,
+    /// Accepted mechanism ids.
+    pub selected: Vec<String>,
+    /// Near-equivalent mechanism ids when the verdict is ambiguous.
+    pub ambiguous_with: Vec<String>,
+    /// Fit before and after.
+    pub fit: FitSummary,
+    /// The test or measurement that would separate the remaining candidates.
+    pub next_test: String,
+    /// Plain-text explanation.
+    pub explanation: String,
+    /// `A` (external simulation) or `B` (own forward model).
+    pub mode: String,
+    /// Number of test conditions.
+    pub conditions: usize,
+    /// Number of measured numbers.
+    pub observations: usize,
+    /// Assumed relative noise per output, %.
+    pub noise_pct: [f64; 3],
+    /// Global misfit of the baseline.
+    pub global_misfit: GlobalMisfit,
+    /// Decision thresholds.
+    pub thresholds: Thresholds,
+    /// Baseline parameters before (fitted baseline) and after (with the selected mechanisms).
+    pub baseline_params_before: Vec<NamedValue>,
+    /// Baseline parameters after the joint refit.
+    pub baseline_params_after: Vec<NamedValue>,
+    /// Mechanisms not testable on this design.
+    pub not_testable: Vec<NotTestable>,
+    /// Residuals before and after (for plots).
+    pub residuals: Vec<ResidualRow>,
+}
+
+impl Report {
+    /// A readable multi-line text report.
+    #[must_use]
+    pub fn to_text(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "Discrepancy diagnosis (mode {}): {} conditions, {} measured numbers",
+            self.mode, self.conditions, self.observations
+        );
+        let _ = writeln!(s, "Verdict: {}", self.verdict.as_str());
+        let _ = writeln!(
+            s,
+            "Global misfit of the baseline: chi2 = {:.1} on {} dof (p = {:.2e}, assumed noise Fc {:.0} %, Ft {:.0} %, tc {:.0} %)",
+            self.global_misfit.chi2, self.global_misfit.dof, self.global_misfit.p_value, self.noise_pct[0], self.noise_pct[1], self.noise_pct[2]
+        );
+        let _ = writeln!(s, "\nWhere the model misses (measured - model):");
+        for m in &self.mismatch {
+            let _ = writeln!(
+                s,
+                "  {:<3} bias {:+7.1} %  trend: {}  p = {:.2e}  tests: {}",
+                m.output,
+                m.bias_pct,
+                m.trend,
+                m.p_value,
+                if m.tests.is_empty() { "-".to_string() } else { m.tests.join(", ") }
+            );
+        }
+        let _ = writeln!(
+            s,
+            "\nMechanisms refitted jointly with the baseline (threshold p < {:.4} per mechanism):",
+            self.thresholds.per_mechanism_alpha
+        );
+        for m in &self.mechanisms {
+            let params: Vec<String> = m
+                .params
+                .iter()
+                .map(|(k, v)| format!("{k} = {:.4} {} [{:.4}, {:.4}]", v.value, v.unit, v.ci_low, v.ci_high))
+                .collect();
+            let ho = match (m.heldout_rms_before, m.heldout_rms_after) {
+                (Some(b), Some(a)) => format!("held-out RMS {b:.1} % -> {a:.1} %"),
+                _ => "held-out: not available".into(),
+            };
+            let _ = writeln!(
+                s,
+                "  {} {:<20} dAICc {:+7.1}  p = {:.2e}  explains {:3.0} %  {}  {}\n      {}",
+                if m.accepted { "[accepted]" } else { "[        ]" },
+                m.id,
+                m.delta_aicc,
+                m.p_value,
+                100.0 * m.explained_fraction,
+                ho,
+                params.join("; "),
+                m.reason
+            );
+        }
+        if !self.not_testable.is_empty() {
+            let _ = writeln!(
+                s,
+                "  not testable here: {}",
+                self.not_testable.iter().map(|n| format!("{} ({})", n.id, n.reason)).collect::<Vec<_>>().join("; ")
+            );
+        }
+        let row = |r: &OutputRms| {
+            let f = |v: Option<f64>| v.map(|x| format!("{x:6.1}")).unwrap_or_else(|| "     -".into());
+            format!("Fc {} Ft {} tc {}  all {:6.1}", f(r.fc), f(r.ft), f(r.tc), r.all)
+        };
+        let _ = writeln!(s, "\nRMS error %            before                                   after");
+        let _ = writeln!(s, "  in-sample   {}   {}", row(&self.fit.before.in_sample), row(&self.fit.after.in_sample));
+        if let (Some(b), Some(a)) = (&self.fit.before.loco, &self.fit.after.loco) {
+            let _ = writeln!(s, "  held-out    {}   {}", row(b), row(a));
+        }
+        if !self.selected.is_empty() {
+            let _ = writeln!(s, "\nSelected: {}", self.selected.join(", "));
+        }
+        if !self.ambiguous_with.is_empty() {
+            let _ = writeln!(s, "\nCandidates that cannot be told apart here: {}", self.ambiguous_with.join(", "));
+        }
+        let _ = writeln!(s, "\nNext test: {}", self.next_test);
+        let _ = writeln!(s, "\n{}", self.explanation);
+        s
+    }
+}
