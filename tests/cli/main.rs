@@ -1,5 +1,7 @@
 //! End-to-end tests of the `cutcal` binary: outputs, exit codes and located error messages.
 
+mod catalogue;
+mod determinism;
 mod identify;
 
 use std::path::{Path, PathBuf};

@@ -61,15 +61,29 @@ pub struct DpzdSection {
 #[serde(deny_unknown_fields)]
 pub struct BoundsSection {
     /// A, MPa.
+    #[serde(deserialize_with = "pair")]
     pub a_mpa: [f64; 2],
     /// B, MPa.
+    #[serde(deserialize_with = "pair")]
     pub b_mpa: [f64; 2],
     /// n.
+    #[serde(deserialize_with = "pair")]
     pub n: [f64; 2],
     /// C.
+    #[serde(deserialize_with = "pair")]
     pub c: [f64; 2],
     /// m.
+    #[serde(deserialize_with = "pair")]
     pub m: [f64; 2],
+}
+
+/// Reads exactly two numbers: the TOML reader would otherwise drop a third one silently.
+fn pair<'de, D: serde::Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
+    let v = Vec::<f64>::deserialize(d)?;
+    match v.as_slice() {
+        [lo, hi] => Ok([*lo, *hi]),
+        _ => Err(serde::de::Error::custom(format!("expected a bound pair [low, high], got {} numbers", v.len()))),
+    }
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]

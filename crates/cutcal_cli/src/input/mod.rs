@@ -96,6 +96,27 @@ pub fn decode_text(path: &Path, bytes: Vec<u8>) -> Result<String, InputError> {
     Ok(text)
 }
 
+/// A number rounded to 6 significant digits, in exponent form when very large or very small
+/// (messages must stay readable for `1e300` and for SI values like `2.5e-5` m).
+pub(crate) fn short_number(v: f64) -> String {
+    let rounded: f64 = format!("{v:.5e}").parse().unwrap_or(v);
+    if rounded.is_finite() && rounded.abs() > 0.0 && (rounded.abs() >= 1e7 || rounded.abs() < 1e-4) {
+        format!("{rounded:e}")
+    } else {
+        format!("{rounded}")
+    }
+}
+
+/// The reason of a model validation error, with the rejected SI value shortened.
+pub(crate) fn model_reason(e: &cutcal_model::ModelError) -> String {
+    match e {
+        cutcal_model::ModelError::OutOfRange { field, value, rule } => {
+            format!("{field} = {} must satisfy {rule}", short_number(*value))
+        }
+        other => other.to_string(),
+    }
+}
+
 /// 1-based line of a byte offset in `text`.
 pub(crate) fn line_of(text: &str, offset: usize) -> usize {
     text.as_bytes()[..offset.min(text.len())].iter().filter(|b| **b == b'\n').count() + 1
@@ -147,15 +168,25 @@ pub(crate) fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str
     toml::from_str(text).map_err(|e| {
         let span = e.span().map(|s| s.start.min(text.len())..s.end.min(text.len()));
         let line = span.as_ref().map(|s| line_of(text, s.start));
-        let value = span
-            .as_ref()
-            .and_then(|s| text.get(s.clone()))
-            .map(|v| v.lines().next().unwrap_or("").trim().chars().take(80).collect::<String>())
-            .unwrap_or_default();
+        let value = span.as_ref().map(|s| offending_text(text, s.clone())).unwrap_or_default();
         let mut err = InputError::new(path, line, "(toml)", value, e.message().trim().to_string());
         err.column = span.as_ref().map(|s| column_of(text, s.start));
         err
     })
+}
+
+/// The text an error span points at: the span if it is within one line, widened to the whole
+/// token when the span is shorter (`1e400` where the reader points at `1`); empty for a span
+/// over several lines (a missing key is reported against its whole table).
+fn offending_text(text: &str, span: std::ops::Range<usize>) -> String {
+    let Some(spanned) = text.get(span.clone()) else { return String::new() };
+    if spanned.trim_end().contains('\n') {
+        return String::new();
+    }
+    let rest = text.get(span.start..).unwrap_or("");
+    let token: String = rest.chars().take_while(|c| !c.is_whitespace() && !",]}#".contains(*c)).collect();
+    let best = if token.len() > spanned.trim().len() { token.as_str() } else { spanned.trim() };
+    best.chars().take(80).collect()
 }
 
 /// 1-based character column of a byte offset in `text`.

@@ -14,7 +14,7 @@ use std::path::Path;
 use cutcal_model::dpzd::ShearPlaneState;
 use cutcal_model::CuttingTest;
 
-use super::{read_text, InputError};
+use super::{model_reason, read_text, InputError};
 
 const REQUIRED: [&str; 5] = ["test", "speed_m_min", "uncut_mm", "width_mm", "rake_deg"];
 const OPTIONAL: [&str; 10] = [
@@ -140,24 +140,23 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
         if !seen.insert(id.clone()) {
             return Err(InputError::new(path, line, "test", &id, "duplicate test id"));
         }
-        let located = |field: &'static str, value: Option<f64>| {
-            let v = value.map(|v| v.to_string()).unwrap_or_default();
-            move |e: cutcal_model::ModelError| InputError::new(path, line, field, &v, e.to_string())
+        // The value is reported as written in the file, the rule in the model's SI units.
+        let located = |field: &'static str| {
+            let v = cell(field).to_string();
+            move |e: cutcal_model::ModelError| InputError::new(path, line, field, &v, model_reason(&e))
         };
         let speed = num("speed_m_min", true)?.unwrap_or_default();
         let uncut = num("uncut_mm", true)?.unwrap_or_default();
         let width = num("width_mm", true)?.unwrap_or_default();
         let rake = num("rake_deg", true)?.unwrap_or_default();
         let mut t = CuttingTest::new(id, speed / 60.0, uncut * 1e-3, width * 1e-3, rake.to_radians()).map_err(|e| {
-            let (field, value) = match &e {
-                cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("speed") => {
-                    ("speed_m_min", speed)
-                }
-                cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("uncut") => ("uncut_mm", uncut),
-                cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("width") => ("width_mm", width),
-                _ => ("rake_deg", rake),
+            let field = match &e {
+                cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("speed") => "speed_m_min",
+                cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("uncut") => "uncut_mm",
+                cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("width") => "width_mm",
+                _ => "rake_deg",
             };
-            InputError::new(path, line, field, value, e.to_string())
+            InputError::new(path, line, field, cell(field), model_reason(&e))
         })?;
         let (fc, ft, fc_name, ft_name) = if totals {
             // Totals over the width: N / (w in m) = N/m.
@@ -171,16 +170,16 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
                 "ft_n_per_mm",
             )
         };
-        t = t.with_forces(fc, None).map_err(located(fc_name, num(fc_name, false)?))?;
-        t = t.with_forces(fc, ft).map_err(located(ft_name, num(ft_name, false)?))?;
+        t = t.with_forces(fc, None).map_err(located(fc_name))?;
+        t = t.with_forces(fc, ft).map_err(located(ft_name))?;
         let chip = num("chip_mm", false)?;
-        t = t.with_chip_thickness(chip.map(|c| c * 1e-3)).map_err(located("chip_mm", chip))?;
+        t = t.with_chip_thickness(chip.map(|c| c * 1e-3)).map_err(located("chip_mm"))?;
         let tint = num("t_int_c", false)?;
-        t = t.with_interface_temperature(tint).map_err(located("t_int_c", tint))?;
+        t = t.with_interface_temperature(tint).map_err(located("t_int_c"))?;
         let re = num("edge_radius_um", false)?;
         let vb = num("flank_wear_mm", false)?;
-        t = t.with_tool_condition(re.map(|r| r * 1e-6), None).map_err(located("edge_radius_um", re))?;
-        t = t.with_tool_condition(re.map(|r| r * 1e-6), vb.map(|v| v * 1e-3)).map_err(located("flank_wear_mm", vb))?;
+        t = t.with_tool_condition(re.map(|r| r * 1e-6), None).map_err(located("edge_radius_um"))?;
+        t = t.with_tool_condition(re.map(|r| r * 1e-6), vb.map(|v| v * 1e-3)).map_err(located("flank_wear_mm"))?;
         if let Some(o) = num("order", false)? {
             if o < 0.0 || o.fract().abs() > 0.0 || o > 1e9 {
                 return Err(InputError::new(path, line, "order", o, "must be a non-negative whole number"));
@@ -192,7 +191,7 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
         {
             // Eq 9 needs a positive shear-plane force; say so here, at the row, not deep in a solve.
             if let Err(e) = ShearPlaneState::from_test(&t) {
-                return Err(InputError::new(path, line, ft_name, cell(ft_name), e.to_string()));
+                return Err(InputError::new(path, line, ft_name, cell(ft_name), model_reason(&e)));
             }
         }
         tests.push(t);
