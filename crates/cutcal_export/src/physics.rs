@@ -1,0 +1,353 @@
+//! Physics shared by every dialect: validation of the input, temperature sampling of the Table 3
+//! polynomials, the workpiece shear strength k, the Eq 17 mu(P) table and JC flow-stress tables.
+//!
+//! Everything here is SI with temperatures in degC; dialects convert units when they build their
+//! template context.
+
+use cutcal_model::{Friction, JcParams, Material};
+
+use crate::{ExportError, ExportInput};
+
+/// Shear strength k of the workpiece used by the Eq 17 cards: `k = A / sqrt(3)` (von Mises) of
+/// the exported JC set, in Pa.
+///
+/// **Source:** paper Eq 17 needs "k, the shear strength of the workpiece"; FE codes that take a
+/// friction table cannot feed the local flow stress into mu, so a representative constant is
+/// needed (fe-cards.md §1.6). We take the JC yield stress A (the initial flow stress at the
+/// reference rate and temperature) over sqrt(3); this choice is stated in every card header.
+///
+/// # Example
+/// ```
+/// use cutcal_model::JcParams;
+/// // Paper Table 5, C38: A = 589 MPa -> k = 340.06 MPa.
+/// let jc = JcParams::new(589e6, 145e6, 0.25, 0.069, 1.1, 1.0, 1460.0, 20.0).unwrap();
+/// assert!((cutcal_export::physics::shear_strength_pa(&jc) / 1e6 - 340.0589).abs() < 1e-3);
+/// ```
+#[must_use]
+pub fn shear_strength_pa(jc: &JcParams) -> f64 {
+    jc.a_pa / 3f64.sqrt()
+}
+
+/// Effective friction coefficient of paper Eq 17 at contact pressure `pressure_pa`:
+/// `mu(P) = tau_f / P = m0 k (1 - exp(-beta P)) / P`, with the limit `m0 k beta` at `P = 0`.
+///
+/// **Source:** paper Eq 17, mapped to a pressure table as in fe-cards.md §1.6. Units: `k` and `P`
+/// in Pa, `beta` in 1/Pa; the result is dimensionless.
+///
+/// # Example
+/// ```
+/// // m0 = 1, beta = 0.0045/MPa (paper Sec 5.1), k = 340 MPa, P = 100 MPa:
+/// // 340 (1 - e^-0.45) / 100 = 1.23209.
+/// let mu = cutcal_export::physics::eq17_mu(1.0, 0.0045e-6, 340e6, 100e6);
+/// assert!((mu - 1.232_065).abs() < 1e-5);
+/// ```
+#[must_use]
+pub fn eq17_mu(m0: f64, beta_per_pa: f64, k_pa: f64, pressure_pa: f64) -> f64 {
+    let x = beta_per_pa * pressure_pa;
+    if x < 1e-8 {
+        // Series of (1 - e^-x)/x = 1 - x/2 + x^2/6 avoids 0/0 at P = 0.
+        m0 * k_pa * beta_per_pa * (1.0 - x / 2.0 + x * x / 6.0)
+    } else {
+        m0 * k_pa * (-(-x).exp_m1()) / pressure_pa
+    }
+}
+
+/// Temperature-sampled properties of one material (SI, degC).
+#[derive(Debug, Clone)]
+pub(crate) struct MaterialTables {
+    /// Material name as given.
+    pub name: String,
+    /// Sample temperatures, degC.
+    pub temps_c: Vec<f64>,
+    /// Density, kg/m^3.
+    pub density: Vec<f64>,
+    /// Specific heat, J/(kg K).
+    pub specific_heat: Vec<f64>,
+    /// Volumetric heat capacity, J/(m^3 K).
+    pub rho_cp: Vec<f64>,
+    /// Conductivity, W/(m K).
+    pub conductivity: Vec<f64>,
+    /// Density at the room temperature, kg/m^3.
+    pub density_room: f64,
+    /// Specific heat at the room temperature, J/(kg K).
+    pub specific_heat_room: f64,
+    /// Young's modulus (Pa) and Poisson's ratio, when known.
+    pub elastic: Option<(f64, f64)>,
+}
+
+/// The Eq 17 table: pressures (Pa) and mu values.
+#[derive(Debug, Clone)]
+pub(crate) struct MuTable {
+    pub m0: f64,
+    pub beta_per_pa: f64,
+    pub k_pa: f64,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Everything a dialect needs, validated and sampled once.
+#[derive(Debug, Clone)]
+pub(crate) struct Prepared {
+    /// File stem (lower-case workpiece name).
+    pub stem: String,
+    pub wp: MaterialTables,
+    pub tool: Option<MaterialTables>,
+    pub jc: JcParams,
+    /// Temperatures of flow-stress tables (the workpiece grid, strictly below Tm), degC.
+    pub flow_temps_c: Vec<f64>,
+    /// Eq 17 table when the interface uses Eq 17.
+    pub mu_table: Option<MuTable>,
+    /// Coulomb mu when the interface is Coulomb.
+    pub coulomb_mu: Option<f64>,
+    /// Heat transfer coefficient, W/(m^2 K).
+    pub htc: f64,
+}
+
+/// Checks a name for use in cards: ASCII letters, digits, `_` and `-`, 1 to 40 characters.
+pub(crate) fn check_name(name: &str) -> Result<(), ExportError> {
+    let ok =
+        !name.is_empty() && name.len() <= 40 && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+    if ok {
+        Ok(())
+    } else {
+        Err(ExportError::BadName {
+            name: name.to_string(),
+            reason: "use 1-40 ASCII letters, digits, '_' or '-' (card names and titles)".into(),
+        })
+    }
+}
+
+/// Checks a provenance text for card headers: printable ASCII without commas, <= 60 characters.
+pub(crate) fn check_label(label: &str) -> Result<(), ExportError> {
+    let ok = !label.is_empty() && label.len() <= 60 && label.chars().all(|c| (' '..='~').contains(&c) && c != ',');
+    if ok {
+        Ok(())
+    } else {
+        Err(ExportError::BadName {
+            name: label.to_string(),
+            reason: "header labels must be 1-60 printable ASCII characters without commas".into(),
+        })
+    }
+}
+
+fn sample_grid(from_c: f64, to_c: f64, step_c: f64) -> Vec<f64> {
+    let mut out = Vec::new();
+    let mut i = 0u32;
+    loop {
+        let t = from_c + step_c * f64::from(i);
+        if t > to_c - 1e-9 * step_c {
+            break;
+        }
+        out.push(t);
+        i += 1;
+    }
+    out.push(to_c);
+    out
+}
+
+fn tables(m: &Material, input: &ExportInput<'_>) -> Result<MaterialTables, ExportError> {
+    check_name(&m.name)?;
+    m.validate().map_err(|e| ExportError::invalid(format!("material {}", m.name), e))?;
+    let g = &input.options.temperatures;
+    let from = g.from_c.max(m.thermal.valid_from_c);
+    let to = g.to_c.min(m.thermal.valid_to_c);
+    if !(to > from) {
+        return Err(ExportError::BadOption {
+            field: "temperatures".into(),
+            value: format!("[{}, {}] degC", g.from_c, g.to_c),
+            expected: format!(
+                "a range overlapping the validity range [{}, {}] degC of {}",
+                m.thermal.valid_from_c, m.thermal.valid_to_c, m.name
+            ),
+        });
+    }
+    let temps_c = sample_grid(from, to, g.step_c);
+    let th = &m.thermal;
+    let mut t = MaterialTables {
+        name: m.name.clone(),
+        density: temps_c.iter().map(|&x| th.density.value(x)).collect(),
+        specific_heat: temps_c.iter().map(|&x| th.specific_heat(x)).collect(),
+        rho_cp: temps_c.iter().map(|&x| th.rho_cp.value(x)).collect(),
+        conductivity: temps_c.iter().map(|&x| th.conductivity.value(x)).collect(),
+        density_room: th.density.value(m.room_c),
+        specific_heat_room: th.specific_heat(m.room_c),
+        elastic: m.elastic.map(|e| (e.youngs_pa, e.poisson)),
+        temps_c,
+    };
+    for (what, v) in [("density", &t.density), ("specific heat", &t.specific_heat), ("conductivity", &t.conductivity)] {
+        for (x, val) in t.temps_c.iter().zip(v) {
+            ExportError::finite(&format!("{} {what} at {x} degC", m.name), *val)?;
+        }
+    }
+    t.density_room = ExportError::finite(&format!("{} density at room temperature", m.name), t.density_room)?;
+    t.specific_heat_room =
+        ExportError::finite(&format!("{} specific heat at room temperature", m.name), t.specific_heat_room)?;
+    Ok(t)
+}
+
+/// Validates the whole input and samples every table.
+pub(crate) fn prepare(input: &ExportInput<'_>) -> Result<Prepared, ExportError> {
+    let o = input.options;
+    let g = &o.temperatures;
+    if !(g.from_c.is_finite() && g.to_c.is_finite() && g.step_c.is_finite() && g.step_c > 0.0 && g.to_c > g.from_c) {
+        return Err(ExportError::BadOption {
+            field: "temperatures".into(),
+            value: format!("from {} to {} step {} degC", g.from_c, g.to_c, g.step_c),
+            expected: "finite, from < to, step > 0".into(),
+        });
+    }
+    if (g.to_c - g.from_c) / g.step_c > 200.0 {
+        return Err(ExportError::BadOption {
+            field: "temperatures.step_c".into(),
+            value: g.step_c.to_string(),
+            expected: "at most 200 temperature points".into(),
+        });
+    }
+    let strictly_increasing = |v: &[f64]| v.windows(2).all(|w| w[1] > w[0]) && v.iter().all(|x| x.is_finite());
+    if o.plastic_strains.len() < 2 || !strictly_increasing(&o.plastic_strains) || o.plastic_strains[0].abs() > 0.0 {
+        return Err(ExportError::BadOption {
+            field: "plastic_strains".into(),
+            value: format!("{:?}", o.plastic_strains),
+            expected: "at least two strictly increasing strains starting at 0".into(),
+        });
+    }
+    if o.flow_strain_rates_per_s.is_empty() || !strictly_increasing(&o.flow_strain_rates_per_s) {
+        return Err(ExportError::BadOption {
+            field: "flow_strain_rates_per_s".into(),
+            value: format!("{:?}", o.flow_strain_rates_per_s),
+            expected: "strictly increasing strain rates".into(),
+        });
+    }
+    if o.contact_pressures_pa.len() < 2
+        || !strictly_increasing(&o.contact_pressures_pa)
+        || o.contact_pressures_pa[0] < 0.0
+    {
+        return Err(ExportError::BadOption {
+            field: "contact_pressures_pa".into(),
+            value: format!("{:?}", o.contact_pressures_pa),
+            expected: "at least two strictly increasing pressures >= 0".into(),
+        });
+    }
+    if !(o.inelastic_heat_fraction.is_finite() && o.inelastic_heat_fraction > 0.0 && o.inelastic_heat_fraction <= 1.0) {
+        return Err(ExportError::BadOption {
+            field: "inelastic_heat_fraction".into(),
+            value: o.inelastic_heat_fraction.to_string(),
+            expected: "0 < fraction <= 1".into(),
+        });
+    }
+    let jc = *input.jc;
+    jc.validate().map_err(|e| ExportError::invalid("jc set", e))?;
+    let rate_ok = |r: f64| r.is_finite() && r > 0.0 && jc.rate_factor(r) > 0.0;
+    if !rate_ok(o.tabular_strain_rate_per_s) || !o.flow_strain_rates_per_s.iter().all(|r| rate_ok(*r)) {
+        return Err(ExportError::BadOption {
+            field: "strain rates".into(),
+            value: format!("{} and {:?}", o.tabular_strain_rate_per_s, o.flow_strain_rates_per_s),
+            expected: "positive rates with a positive JC rate factor 1 + C ln(rate/eps0)".into(),
+        });
+    }
+    for (label, text) in [
+        ("cutcal_version", &input.provenance.cutcal_version),
+        ("source_test", &input.provenance.source_test),
+        ("model_variant", &input.provenance.model_variant),
+    ] {
+        check_label(text).map_err(|e| match e {
+            ExportError::BadName { name, reason } => {
+                ExportError::BadName { name, reason: format!("{label}: {reason}") }
+            }
+            other => other,
+        })?;
+    }
+    let wp = tables(input.workpiece, input)?;
+    let tool = input.tool.map(|t| tables(t, input)).transpose()?;
+    let flow_temps_c: Vec<f64> = wp.temps_c.iter().copied().filter(|t| *t < jc.tm_c).collect();
+    if flow_temps_c.is_empty() {
+        return Err(ExportError::BadOption {
+            field: "temperatures".into(),
+            value: format!("[{}, {}] degC", g.from_c, g.to_c),
+            expected: format!("at least one temperature below Tm = {} degC", jc.tm_c),
+        });
+    }
+    let iface = input.interface;
+    iface.friction.validate().map_err(|e| ExportError::invalid("interface friction", e))?;
+    let htc = iface.heat_transfer_w_per_m2_k;
+    if !(htc.is_finite() && htc > 0.0) {
+        return Err(ExportError::NonFinite { field: "heat_transfer_w_per_m2_k".into(), value: htc });
+    }
+    let k_pa = ExportError::finite("shear strength k", shear_strength_pa(&jc))?;
+    let (mu_table, coulomb_mu) = match iface.friction {
+        Friction::PressureDependentShear { m0, beta_per_pa } => {
+            let points = o
+                .contact_pressures_pa
+                .iter()
+                .map(|&p| Ok((p, ExportError::finite("mu(P)", eq17_mu(m0, beta_per_pa, k_pa, p))?)))
+                .collect::<Result<Vec<_>, ExportError>>()?;
+            (Some(MuTable { m0, beta_per_pa, k_pa, points }), None)
+        }
+        Friction::Coulomb { mu } => (None, Some(mu)),
+    };
+    Ok(Prepared {
+        stem: input.workpiece.name.to_ascii_lowercase(),
+        wp,
+        tool,
+        jc,
+        flow_temps_c,
+        mu_table,
+        coulomb_mu,
+        htc,
+    })
+}
+
+impl Prepared {
+    /// JC flow stress (Pa) at each plastic strain for one rate and temperature; errors if a value
+    /// is not finite or not positive (a zero yield stress is not a usable table entry).
+    pub(crate) fn flow_curve(&self, strains: &[f64], rate: f64, temp_c: f64) -> Result<Vec<f64>, ExportError> {
+        strains
+            .iter()
+            .map(|&e| {
+                let s = self.jc.flow_stress(e, rate, temp_c);
+                if s.is_finite() && s > 0.0 {
+                    Ok(s)
+                } else {
+                    Err(ExportError::NonFinite {
+                        field: format!("JC flow stress at strain {e}, rate {rate} 1/s, {temp_c} degC"),
+                        value: s,
+                    })
+                }
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_ends_at_the_upper_bound() {
+        let g = sample_grid(20.0, 560.0, 100.0);
+        assert_eq!(g.len(), 7);
+        assert!((g[5] - 520.0).abs() < 1e-12 && (g[6] - 560.0).abs() < 1e-12);
+        let h = sample_grid(20.0, 1220.0, 100.0);
+        assert_eq!(h.len(), 13);
+    }
+
+    #[test]
+    fn eq17_mu_times_pressure_is_eq17_shear_stress() {
+        // Independent check against the model's own Eq 17 implementation.
+        let f = Friction::PressureDependentShear { m0: 0.9, beta_per_pa: 0.012e-6 };
+        for p in [1e3, 1e6, 50e6, 400e6, 3e9] {
+            let tau = f.shear_stress_pa(p, 144e6);
+            let mu = eq17_mu(0.9, 0.012e-6, 144e6, p);
+            assert!((mu * p - tau).abs() <= 1e-9 * tau, "{p}");
+        }
+        // P -> 0 limit m0 k beta: 0.9 * 144e6 * 0.012e-6 = 1.5552.
+        assert!((eq17_mu(0.9, 0.012e-6, 144e6, 0.0) - 1.5552).abs() < 1e-12);
+    }
+
+    #[test]
+    fn names_with_commas_are_rejected() {
+        assert!(check_name("C38").is_ok());
+        assert!(check_name("C38,x").is_err());
+        assert!(check_label("paper test 3").is_ok());
+        assert!(check_label("a,b").is_err());
+    }
+}

@@ -1,0 +1,6 @@
+//! Integration tests of cutcal_export (one binary, style.md §10).
+
+// Shared fixtures: the paper's materials, Table 5 JC sets, options.
+mod common;
+// Named insta snapshots of every dialect x material.
+mod snapshots;
