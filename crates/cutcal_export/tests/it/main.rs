@@ -4,3 +4,5 @@
 mod common;
 // Named insta snapshots of every dialect x material.
 mod snapshots;
+// dynars (third-party LS-DYNA parser) reads every deck back.
+mod dynars_deck;
