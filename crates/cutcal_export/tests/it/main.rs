@@ -6,3 +6,7 @@ mod common;
 mod snapshots;
 // dynars (third-party LS-DYNA parser) reads every deck back.
 mod dynars_deck;
+// CalculiX runs the tabular Abaqus card (single-element uniaxial tests).
+mod calculix;
+// Property tests: columns, render -> parse round trip, NaN/inf rejected.
+mod roundtrip;
