@@ -6,6 +6,7 @@
 //! relations with the Johnson-Cook law and the equivalent hardening index n_eq). The equations are
 //! cited by quantity and section; the symbols follow Lalwani et al. 2009.
 
+use std::cell::Cell;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 
 use crate::error::ModelError;
@@ -28,6 +29,46 @@ pub(crate) struct Context<'a> {
     pub conditions: &'a CuttingConditions,
     pub options: &'a OxleyOptions,
     pub physics: &'a Physics,
+    /// Last temperatures solved (NaN: none), used to try a narrow bracket first.
+    pub hints: &'a TemperatureHints,
+}
+
+/// The last T_AB and T_int solved, degC (NaN when none). Only a search window: a narrow bracket
+/// around the hint is tried first and the full bracket is used when it does not change sign.
+#[derive(Debug)]
+pub(crate) struct TemperatureHints {
+    pub ab_c: Cell<f64>,
+    pub int_c: Cell<f64>,
+}
+
+impl TemperatureHints {
+    pub fn none() -> Self {
+        Self { ab_c: Cell::new(f64::NAN), int_c: Cell::new(f64::NAN) }
+    }
+}
+
+/// Half-width of the narrow temperature bracket tried around a hint, degC.
+const HINT_HALF_WIDTH_C: f64 = 3.0;
+
+/// Tries Brent on `[hint - w, hint + w]` within `[lo, hi]`; `None` if that window has no sign change.
+fn try_hint<F>(mut f: F, hint: f64, lo: f64, hi: f64, tol: f64, cap: usize, what: &str) -> Option<f64>
+where
+    F: FnMut(f64) -> Result<f64, ModelError>,
+{
+    if !hint.is_finite() {
+        return None;
+    }
+    let a = (hint - HINT_HALF_WIDTH_C).max(lo);
+    let b = (hint + HINT_HALF_WIDTH_C).min(hi);
+    if !(b > a) {
+        return None;
+    }
+    let fa = f(a).ok()?;
+    let fb = f(b).ok()?;
+    if !(fa <= 0.0 && fb >= 0.0) {
+        return None;
+    }
+    brent_root(f, a, b, fa, fb, tol, cap, what).ok()
 }
 
 /// The primary zone and the force system at (phi, C0).
@@ -163,25 +204,24 @@ impl Context<'_> {
         };
         let f = |t: f64| -> Result<f64, ModelError> { Ok(t - tw - eta * rise(t).0) };
         let tm = self.jc.tm_c.min(self.material.melting_c);
-        let f_lo = f(tw)?;
-        let f_hi = f(tm)?;
-        if f_hi < 0.0 {
-            return Err(ModelError::AboveMelting {
-                what: "primary-zone temperature T_AB".into(),
-                temperature_c: tm - f_hi,
-                melting_c: tm,
-            });
-        }
-        let t_ab = brent_root(
-            f,
-            tw,
-            tm,
-            f_lo,
-            f_hi,
-            self.options.temperature_tolerance_c,
-            self.options.max_bracket_iterations,
-            "primary-zone temperature T_AB",
-        )?;
+        let (tol, cap) = (self.options.temperature_tolerance_c, self.options.max_bracket_iterations);
+        let what = "primary-zone temperature T_AB";
+        let t_ab = match try_hint(f, self.hints.ab_c.get(), tw, tm, tol, cap, what) {
+            Some(t) => t,
+            None => {
+                let f_lo = f(tw)?;
+                let f_hi = f(tm)?;
+                if f_hi < 0.0 {
+                    return Err(ModelError::AboveMelting {
+                        what: what.into(),
+                        temperature_c: tm - f_hi,
+                        melting_c: tm,
+                    });
+                }
+                brent_root(f, tw, tm, f_lo, f_hi, tol, cap, what)?
+            }
+        };
+        self.hints.ab_c.set(t_ab);
         let (d_t_sz, k_ab, beta, beta_outside) = rise(t_ab);
         if !(k_ab > 0.0) {
             return Err(ModelError::AboveMelting {
@@ -276,8 +316,12 @@ impl Context<'_> {
         };
         let g = |t: f64| -> Result<f64, ModelError> { Ok(t - base - psi * rise_m(t)) };
         let top = self.material.thermal.valid_to_c;
+        let (tol, cap) = (self.options.temperature_tolerance_c, self.options.max_bracket_iterations);
+        let what = "tool-chip interface temperature T_int";
         let t_int = if top <= base {
             base + psi * rise_m(top)
+        } else if let Some(t) = try_hint(g, self.hints.int_c.get(), base, top, tol, cap, what) {
+            t
         } else {
             let g_hi = g(top)?;
             if g_hi <= 0.0 {
@@ -285,18 +329,10 @@ impl Context<'_> {
                 base + psi * rise_m(top)
             } else {
                 let g_lo = g(base)?;
-                brent_root(
-                    g,
-                    base,
-                    top,
-                    g_lo,
-                    g_hi,
-                    self.options.temperature_tolerance_c,
-                    self.options.max_bracket_iterations,
-                    "tool-chip interface temperature T_int",
-                )?
+                brent_root(g, base, top, g_lo, g_hi, tol, cap, what)?
             }
         };
+        self.hints.int_c.set(t_int);
         // Interface strain rate epsdot_int = V_c / (sqrt(3) delta t2) and strain
         // eps_int = 2 eps_AB + 0.5 h / (sqrt(3) delta t2) (Lalwani et al. 2009, Sec. 2).
         let strain_rate = p.chip_velocity_m_per_s / (SQRT3 * delta * t2);

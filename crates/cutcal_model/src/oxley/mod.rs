@@ -80,7 +80,7 @@ use crate::material::Material;
 
 pub use options::{CuttingConditions, EdgeForce, FlankWear, OxleyOptions, Physics};
 
-use equations::Context;
+use equations::{Context, TemperatureHints};
 use solve::Solver;
 
 /// Flags describing how trustworthy a prediction is.
@@ -128,6 +128,8 @@ pub struct OxleyPrediction {
     pub hook_cutting_force_n_per_m: f64,
     /// Added feed force per unit width from the edge and flank-wear hooks, N/m.
     pub hook_feed_force_n_per_m: f64,
+    /// Shear force along AB per unit width, F_s = k_AB l_AB, N/m.
+    pub shear_force_n_per_m: f64,
     /// Chip thickness t2, m.
     pub chip_thickness_m: f64,
     /// Tool-chip contact length h, m.
@@ -214,7 +216,8 @@ pub fn predict_from(
             melting_c: tm,
         });
     }
-    let ctx = Context { material, jc, conditions, options, physics };
+    let hints = TemperatureHints::none();
+    let ctx = Context { material, jc, conditions, options, physics, hints: &hints };
     let mut solver = Solver::new(ctx, start.map(|p| (p.phi_rad, p.c0)));
     let search = solver.search_delta()?;
     let s = search.best.state;
@@ -254,6 +257,7 @@ pub fn predict_from(
         chip_feed_force_n_per_m: p.feed_force_n_per_m,
         hook_cutting_force_n_per_m: hook_c,
         hook_feed_force_n_per_m: hook_t,
+        shear_force_n_per_m: p.shear_force_n_per_m,
         chip_thickness_m: p.chip_thickness_m,
         contact_length_m: p.contact_length_m,
         shear_plane_length_m: p.shear_plane_length_m,

@@ -113,8 +113,8 @@ impl OxleyOptions {
     /// eta = psi = 0.9 (Oxley 1989) with search ranges wider than Lalwani's:
     /// C0 in [1.2, 30], phi in [3, 65] deg, delta in [0.002, 0.5].
     ///
-    /// Solver settings: residuals to 1e-8 of k_AB, temperatures to 1e-9 degC, at most 40 Newton
-    /// and 100 bracketing iterations; 25 phi, 12 C0 and 14 delta scan points; delta refined to 1e-3;
+    /// Solver settings: residuals to 1e-8 of k_AB, temperatures to 1e-8 degC, at most 40 Newton
+    /// and 100 bracketing iterations; 25 phi, 12 C0 and 10 delta scan points; ln(delta) refined to 5e-3;
     /// the minimum is "flat" if Fc changes by less than 0.3 % at delta*(1 -/+ 0.25).
     #[must_use]
     pub fn wide() -> Self {
@@ -125,13 +125,13 @@ impl OxleyOptions {
             c0_range: [1.2, 30.0],
             delta_range: [0.002, 0.5],
             residual_tolerance: 1e-8,
-            temperature_tolerance_c: 1e-9,
+            temperature_tolerance_c: 1e-8,
             max_newton_iterations: 40,
             max_bracket_iterations: 100,
             phi_scan_points: 25,
             c0_scan_points: 12,
-            delta_scan_points: 14,
-            delta_tolerance: 1e-3,
+            delta_scan_points: 10,
+            delta_tolerance: 5e-3,
             delta_flat_tolerance: 0.003,
             delta_flat_band: 0.25,
         }

@@ -297,7 +297,7 @@ impl<'a> Solver<'a> {
                 };
                 brent_min(f, l.delta.ln(), r.delta.ln(), o.delta_tolerance, o.max_bracket_iterations, "Oxley delta")
             };
-            if res.is_ok() {
+            if res.is_ok_and(|m| m.x.is_finite() && m.f.is_finite()) {
                 best = found;
             } else if fc(&found) < fc(&best) {
                 best = found;
