@@ -3,12 +3,14 @@
 //! - [`lm`]: a bounded Levenberg-Marquardt solver on nalgebra (why our own: see the module);
 //! - [`multistart`]: seeded Latin-hypercube multistart and fit statistics (covariance, correlation,
 //!   parameters at bounds);
-//! - [`dpzd_fit`]: the paper's Eq 15 identification from one DPZD zone solution.
+//! - [`dpzd_fit`]: the paper's Eq 15 identification from one DPZD zone solution;
+//! - [`bootstrap`]: parameter uncertainty by resampling the measurements (parallel, deterministic).
 //!
 //! Data flow: `cutcal_model::dpzd::ZoneSolution` -> [`dpzd_fit::identify_from_zone`] ->
 //! [`dpzd_fit::JcIdentification`].
 #![warn(missing_docs)]
 
+pub mod bootstrap;
 pub mod dpzd_fit;
 pub mod error;
 pub mod joint;

@@ -1,0 +1,355 @@
+//! Parameter uncertainty by parametric bootstrap: the measured cutting force, feed force and chip
+//! thickness are resampled within their stated relative uncertainties, the identification is re-run
+//! on every sample, and the spread and correlation of the identified JC parameters are reported.
+//!
+//! Sampling: each measured value `q` becomes `q (1 + u z)` with `z` a standard normal deviate and
+//! `u` the relative standard uncertainty (e.g. 3 % for forces, 5 % for chip thickness). A sample
+//! whose identification fails (e.g. the perturbed forces melt the zone) is counted, not fatal.
+//!
+//! Determinism: sample `i` draws from a ChaCha8 stream `i` of the master seed, so every sample is
+//! fixed by `(seed, i)` alone. Samples run in parallel with rayon and are collected in index order,
+//! so the report is bit-identical for any number of threads.
+
+use cutcal_model::JcParams;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::dpzd_fit::JC_NAMES;
+use crate::error::IdentError;
+
+/// The measured quantities the DPZD identification depends on.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Measurement {
+    /// Cutting force per unit width, N/m.
+    pub cutting_force_n_per_m: f64,
+    /// Feed (thrust) force per unit width, N/m.
+    pub feed_force_n_per_m: f64,
+    /// Chip thickness, m.
+    pub chip_thickness_m: f64,
+}
+
+/// Relative standard uncertainties (one standard deviation, as a fraction: 0.03 = 3 %).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RelativeUncertainty {
+    /// Of both forces.
+    pub force: f64,
+    /// Of the chip thickness.
+    pub chip_thickness: f64,
+}
+
+impl RelativeUncertainty {
+    /// Validating constructor.
+    ///
+    /// Returns an error unless both uncertainties are finite and in `[0, 0.25]` (beyond 25 % a
+    /// normal perturbation makes non-positive measurements likely: 4 standard deviations).
+    ///
+    /// # Example
+    /// ```
+    /// use cutcal_ident::bootstrap::RelativeUncertainty;
+    /// assert!(RelativeUncertainty::new(0.03, 0.05).is_ok());
+    /// assert!(RelativeUncertainty::new(-0.03, 0.05).is_err());
+    /// ```
+    pub fn new(force: f64, chip_thickness: f64) -> Result<Self, IdentError> {
+        for (name, u) in [("force", force), ("chip thickness", chip_thickness)] {
+            if !(u.is_finite() && (0.0..=0.25).contains(&u)) {
+                return Err(IdentError::InvalidOptions(format!(
+                    "relative {name} uncertainty must satisfy 0 <= u <= 0.25, got {u}"
+                )));
+            }
+        }
+        Ok(Self { force, chip_thickness })
+    }
+}
+
+/// Bootstrap settings (no `Default`: the sample count and uncertainties are choices to state).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BootstrapOptions {
+    /// Number of resampled identifications (2..=1_000_000).
+    pub samples: usize,
+    /// Master seed; sample `i` uses ChaCha8 stream `i` of it.
+    pub seed: u64,
+    /// Measurement uncertainties.
+    pub uncertainty: RelativeUncertainty,
+}
+
+/// Spread of one identified parameter over the successful samples.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ParameterSpread {
+    /// Parameter name (`a_mpa`, `b_mpa`, `n`, `c`, `m`).
+    pub name: String,
+    /// Mean.
+    pub mean: f64,
+    /// Sample standard deviation (divisor `k - 1`).
+    pub std: f64,
+    /// 2.5 % quantile (linear interpolation between order statistics).
+    pub q025: f64,
+    /// 97.5 % quantile.
+    pub q975: f64,
+}
+
+/// The outcome of a bootstrap.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BootstrapReport {
+    /// Samples drawn.
+    pub samples: usize,
+    /// Samples whose identification succeeded (the statistics are over these).
+    pub succeeded: usize,
+    /// Samples whose identification failed.
+    pub failed: usize,
+    /// The first failure (lowest sample index), if any.
+    pub first_failure: Option<String>,
+    /// Master seed.
+    pub seed: u64,
+    /// The uncertainties sampled.
+    pub uncertainty: RelativeUncertainty,
+    /// Spread of A (MPa), B (MPa), n, C, m, in that order.
+    pub parameters: Vec<ParameterSpread>,
+    /// Pearson correlation matrix in the order of `parameters`; `None` where a parameter does not
+    /// vary (e.g. pinned at a bound in every sample).
+    pub correlation: Vec<Vec<Option<f64>>>,
+}
+
+/// Standard normal deviate by the Box-Muller transform (rand 0.8 without `rand_distr`).
+fn standard_normal(rng: &mut ChaCha8Rng) -> f64 {
+    // 1 - U lies in (0, 1]: the logarithm is finite.
+    let u1: f64 = 1.0 - rng.gen::<f64>();
+    let u2: f64 = rng.gen::<f64>();
+    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+}
+
+/// The measurement of sample `index`: each value times `1 + u z`, `z` standard normal, drawn from
+/// ChaCha8 stream `index` of `seed` (forces first, then chip thickness).
+#[must_use]
+pub fn perturbed(nominal: &Measurement, uncertainty: &RelativeUncertainty, seed: u64, index: usize) -> Measurement {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(index as u64);
+    let fc = standard_normal(&mut rng);
+    let ft = standard_normal(&mut rng);
+    let tc = standard_normal(&mut rng);
+    Measurement {
+        cutting_force_n_per_m: nominal.cutting_force_n_per_m * (1.0 + uncertainty.force * fc),
+        feed_force_n_per_m: nominal.feed_force_n_per_m * (1.0 + uncertainty.force * ft),
+        chip_thickness_m: nominal.chip_thickness_m * (1.0 + uncertainty.chip_thickness * tc),
+    }
+}
+
+/// The five identified parameters in report units: A and B in MPa, then n, C, m.
+fn report_vector(jc: &JcParams) -> [f64; 5] {
+    [jc.a_pa / 1e6, jc.b_pa / 1e6, jc.n, jc.c, jc.m]
+}
+
+/// Runs `identify` on `options.samples` perturbed copies of `nominal` in parallel and summarises
+/// the identified parameters.
+///
+/// `identify` maps a measurement to an identified JC set; it runs on rayon's pool, so it must be
+/// `Sync` and should not itself spawn parallel work.
+///
+/// Returns an error if the options are invalid or fewer than two samples succeed (the first
+/// failure is quoted).
+pub fn bootstrap<F>(
+    nominal: &Measurement,
+    options: &BootstrapOptions,
+    identify: F,
+) -> Result<BootstrapReport, IdentError>
+where
+    F: Fn(&Measurement) -> Result<JcParams, IdentError> + Sync,
+{
+    if !(2..=1_000_000).contains(&options.samples) {
+        return Err(IdentError::InvalidOptions(format!(
+            "bootstrap samples must be in 2..=1000000, got {}",
+            options.samples
+        )));
+    }
+    let u = RelativeUncertainty::new(options.uncertainty.force, options.uncertainty.chip_thickness)?;
+    let results: Vec<Result<[f64; 5], String>> = (0..options.samples)
+        .into_par_iter()
+        .map(|i| {
+            let m = perturbed(nominal, &u, options.seed, i);
+            match identify(&m) {
+                Ok(jc) => {
+                    let v = report_vector(&jc);
+                    if v.iter().all(|x| x.is_finite()) {
+                        Ok(v)
+                    } else {
+                        Err(format!("sample {i}: non-finite parameters {v:?}"))
+                    }
+                }
+                Err(e) => Err(format!("sample {i}: {e}")),
+            }
+        })
+        .collect();
+    let ok: Vec<[f64; 5]> = results.iter().filter_map(|r| r.as_ref().ok().copied()).collect();
+    let first_failure = results.iter().find_map(|r| r.as_ref().err().cloned());
+    if ok.len() < 2 {
+        return Err(IdentError::InvalidOptions(format!(
+            "only {} of {} bootstrap samples could be identified; first failure: {}",
+            ok.len(),
+            options.samples,
+            first_failure.unwrap_or_default()
+        )));
+    }
+    let parameters: Vec<ParameterSpread> = (0..5)
+        .map(|k| {
+            let column: Vec<f64> = ok.iter().map(|v| v[k]).collect();
+            let (mean, std) = mean_std(&column);
+            ParameterSpread {
+                name: JC_NAMES[k].to_string(),
+                mean,
+                std,
+                q025: quantile(&column, 0.025),
+                q975: quantile(&column, 0.975),
+            }
+        })
+        .collect();
+    let correlation = (0..5).map(|i| (0..5).map(|j| correlation(&ok, i, j, &parameters)).collect()).collect();
+    Ok(BootstrapReport {
+        samples: options.samples,
+        succeeded: ok.len(),
+        failed: options.samples - ok.len(),
+        first_failure,
+        seed: options.seed,
+        uncertainty: u,
+        parameters,
+        correlation,
+    })
+}
+
+/// Mean and sample standard deviation (at least two values).
+fn mean_std(x: &[f64]) -> (f64, f64) {
+    let n = x.len() as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    let var = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, var.max(0.0).sqrt())
+}
+
+/// The `p` quantile with linear interpolation between order statistics (Hyndman-Fan type 7).
+#[must_use]
+pub fn quantile(x: &[f64], p: f64) -> f64 {
+    let mut s = x.to_vec();
+    s.sort_by(f64::total_cmp);
+    if s.is_empty() {
+        return f64::NAN;
+    }
+    let h = (s.len() - 1) as f64 * p.clamp(0.0, 1.0);
+    let lo = h.floor() as usize;
+    let hi = (lo + 1).min(s.len() - 1);
+    s[lo] + (h - lo as f64) * (s[hi] - s[lo])
+}
+
+/// Pearson correlation of parameters `i` and `j`; `None` when either does not vary.
+fn correlation(rows: &[[f64; 5]], i: usize, j: usize, spread: &[ParameterSpread]) -> Option<f64> {
+    let (si, sj) = (spread[i].std, spread[j].std);
+    // A spread below 1e-12 of the mean is rounding, not variation.
+    let varies = |s: f64, m: f64| s > 1e-12 * m.abs().max(1e-300);
+    if !(varies(si, spread[i].mean) && varies(sj, spread[j].mean)) {
+        return None;
+    }
+    let n = rows.len() as f64;
+    let cov = rows.iter().map(|r| (r[i] - spread[i].mean) * (r[j] - spread[j].mean)).sum::<f64>() / (n - 1.0);
+    Some((cov / (si * sj)).clamp(-1.0, 1.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // C38 test 3 (paper Table 6): Fc = 224 N/mm, Ft = 186 N/mm, tc = 0.157 mm.
+    const NOMINAL: Measurement =
+        Measurement { cutting_force_n_per_m: 224e3, feed_force_n_per_m: 186e3, chip_thickness_m: 0.157e-3 };
+
+    fn options(samples: usize) -> BootstrapOptions {
+        BootstrapOptions { samples, seed: 7, uncertainty: RelativeUncertainty { force: 0.03, chip_thickness: 0.05 } }
+    }
+
+    /// A stand-in identification with a known linear response: A = Fc/1000 MPa, B = Ft/1000 MPa,
+    /// n = 1000 tc (mm -> a number near 0.157), C and m fixed.
+    fn linear(m: &Measurement) -> Result<JcParams, IdentError> {
+        Ok(JcParams {
+            a_pa: m.cutting_force_n_per_m * 1e3,
+            b_pa: m.feed_force_n_per_m * 1e3,
+            n: m.chip_thickness_m * 1e3,
+            c: 0.069,
+            m: 1.1,
+            eps0_per_s: 1.0,
+            tm_c: 1460.0,
+            tr_c: 20.0,
+        })
+    }
+
+    #[test]
+    fn spread_matches_the_stated_uncertainty() {
+        let r = bootstrap(&NOMINAL, &options(4000), linear).unwrap();
+        assert_eq!((r.succeeded, r.failed), (4000, 0));
+        let a = &r.parameters[0];
+        // A = 224 MPa x (1 + 0.03 z): mean 224, std 6.72; with 4000 samples the standard error of
+        // the std is 6.72/sqrt(2 x 3999) = 0.075, so 5 % (0.34) is > 4 standard errors.
+        assert!((a.mean - 224.0).abs() < 0.5, "{a:?}");
+        assert!((a.std - 6.72).abs() < 0.34, "{a:?}");
+        // Normal quantiles: 224 -/+ 1.96 x 6.72 = 210.8 / 237.2.
+        assert!((a.q025 - 210.8).abs() < 1.0 && (a.q975 - 237.2).abs() < 1.0, "{a:?}");
+        let n = &r.parameters[2];
+        assert!((n.std / n.mean - 0.05).abs() < 0.0025, "{n:?}");
+        // Independent draws: |rho(A, B)| small; C does not vary, so its correlations are None.
+        assert!(r.correlation[0][1].unwrap().abs() < 0.06);
+        assert!((r.correlation[0][0].unwrap() - 1.0).abs() < 1e-12);
+        assert!(r.correlation[3].iter().all(Option::is_none));
+    }
+
+    #[test]
+    fn results_do_not_depend_on_the_thread_count() {
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| bootstrap(&NOMINAL, &options(257), linear).unwrap())
+        };
+        let (one, two, three) = (run(1), run(2), run(3));
+        // Bit-identical, not approximately equal: the point is determinism.
+        let bits = |r: &BootstrapReport| {
+            r.parameters.iter().flat_map(|p| [p.mean, p.std, p.q025, p.q975]).map(f64::to_bits).collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&one), bits(&two));
+        assert_eq!(bits(&one), bits(&three));
+        assert_ne!(bits(&one), bits(&pool_free_other_seed()));
+    }
+
+    fn pool_free_other_seed() -> BootstrapReport {
+        bootstrap(&NOMINAL, &BootstrapOptions { seed: 8, ..options(257) }, linear).unwrap()
+    }
+
+    #[test]
+    fn failed_samples_are_counted_and_quoted() {
+        let flaky = |m: &Measurement| {
+            if m.chip_thickness_m > 0.157e-3 {
+                Err(IdentError::InvalidOptions("chip too thick".into()))
+            } else {
+                linear(m)
+            }
+        };
+        let r = bootstrap(&NOMINAL, &options(400), flaky).unwrap();
+        // About half of a symmetric perturbation lies above the nominal chip thickness.
+        assert!(r.failed > 150 && r.failed < 250, "{}", r.failed);
+        assert_eq!(r.succeeded + r.failed, 400);
+        assert!(r.first_failure.as_deref().unwrap().contains("chip too thick"));
+        let e = bootstrap(&NOMINAL, &options(10), |_| Err(IdentError::InvalidOptions("no".into()))).unwrap_err();
+        assert!(e.to_string().contains("only 0 of 10"), "{e}");
+    }
+
+    #[test]
+    fn invalid_options_are_rejected() {
+        assert!(bootstrap(&NOMINAL, &options(1), linear).is_err());
+        let bad = BootstrapOptions {
+            uncertainty: RelativeUncertainty { force: f64::NAN, chip_thickness: 0.05 },
+            ..options(10)
+        };
+        assert!(bootstrap(&NOMINAL, &bad, linear).unwrap_err().to_string().contains("force uncertainty"));
+    }
+
+    #[test]
+    fn quantile_interpolates_order_statistics() {
+        // Type 7 on 1..=5: p = 0.1 -> h = 0.4 -> 1.4; p = 0.975 -> h = 3.9 -> 4.9.
+        let x = [5.0, 1.0, 3.0, 2.0, 4.0];
+        assert!((quantile(&x, 0.1) - 1.4).abs() < 1e-12);
+        assert!((quantile(&x, 0.975) - 4.9).abs() < 1e-12);
+    }
+}
