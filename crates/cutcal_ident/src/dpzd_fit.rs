@@ -80,23 +80,88 @@ impl JcConstants {
 }
 
 /// The Eq 15 least-squares problem over a set of zone points.
+///
+/// The logarithms that do not depend on the parameters (`ln eps`, `ln(epsdot/eps0)`,
+/// `ln theta`) are computed once, so a residual costs two `exp` per point; the values equal
+/// [`JcParams::flow_stress`] and [`JcParams::gradient`] (checked in the tests).
 #[derive(Debug, Clone)]
 pub struct ZoneFitProblem {
     points: Vec<ZonePoint>,
     constants: JcConstants,
+    cached: Vec<CachedPoint>,
+}
+
+/// Parameter-independent parts of the JC law at one point.
+#[derive(Debug, Clone, Copy)]
+struct CachedPoint {
+    /// `ln eps`, or `None` where eps = 0 (then eps^n = 0 for n > 0).
+    ln_strain: Option<f64>,
+    /// `ln(epsdot/eps0)`.
+    ln_rate: f64,
+    /// `ln theta`, or `None` where the homologous temperature is 0 (no softening).
+    ln_theta: Option<f64>,
+    /// Target `sqrt(3) tau_e`, MPa.
+    target_mpa: f64,
 }
 
 impl ZoneFitProblem {
     /// A problem over the given points.
     #[must_use]
     pub fn new(points: Vec<ZonePoint>, constants: JcConstants) -> Self {
-        Self { points, constants }
+        let probe = JcParams {
+            a_pa: 0.0,
+            b_pa: 0.0,
+            n: 0.0,
+            c: 0.0,
+            m: 1.0,
+            eps0_per_s: constants.eps0_per_s,
+            tm_c: constants.tm_c,
+            tr_c: constants.tr_c,
+        };
+        let cached = points
+            .iter()
+            .map(|p| {
+                let theta = probe.homologous(p.temperature_c);
+                CachedPoint {
+                    ln_strain: (p.strain > 0.0).then(|| p.strain.ln()),
+                    ln_rate: (p.strain_rate_per_s / constants.eps0_per_s).ln(),
+                    ln_theta: (theta > 0.0).then(|| theta.ln()),
+                    target_mpa: p.effective_stress_pa / 1e6,
+                }
+            })
+            .collect();
+        Self { points, constants, cached }
     }
 
     /// The points.
     #[must_use]
     pub fn points(&self) -> &[ZonePoint] {
         &self.points
+    }
+
+    /// JC stress in MPa and its gradient w.r.t. `[A_MPa, B_MPa, n, C, m]` at one cached point.
+    #[inline]
+    fn eval(p: &DVector<f64>, c: &CachedPoint) -> (f64, [f64; 5]) {
+        let (a, b, n, cc, m) = (p[0], p[1], p[2], p[3], p[4]);
+        let (en, d_en_dn) = match c.ln_strain {
+            Some(l) => {
+                let e = (n * l).exp();
+                (e, e * l)
+            }
+            None if n == 0.0 => (1.0, 0.0),
+            None => (0.0, 0.0),
+        };
+        let h = a + b * en;
+        let rf = 1.0 + cc * c.ln_rate;
+        let (tm, d_tm_dm) = match c.ln_theta {
+            Some(l) => {
+                let t = (m * l).exp();
+                (t, t * l)
+            }
+            None => (0.0, 0.0),
+        };
+        let g = 1.0 - tm;
+        (h * rf * g, [rf * g, en * rf * g, b * d_en_dn * rf * g, h * c.ln_rate * g, -h * rf * d_tm_dm])
     }
 }
 
@@ -111,24 +176,19 @@ impl Problem for ZoneFitProblem {
 
     /// `f_k(x) - F_k` in MPa (paper Eq 15).
     fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
-        let jc = self.constants.params(p);
-        for (o, pt) in out.iter_mut().zip(&self.points) {
-            *o = (jc.flow_stress(pt.strain, pt.strain_rate_per_s, pt.temperature_c) - pt.effective_stress_pa) / 1e6;
+        for (o, c) in out.iter_mut().zip(&self.cached) {
+            *o = Self::eval(p, c).0 - c.target_mpa;
         }
         Ok(())
     }
 
-    /// Analytic Jacobian from [`JcParams::gradient`] (MPa per parameter unit).
+    /// Analytic Jacobian (MPa per parameter unit; A and B are in MPa in the vector).
     fn jacobian(&self, p: &DVector<f64>, _bounds: &Bounds, out: &mut DMatrix<f64>) -> Result<(), IdentError> {
-        let jc = self.constants.params(p);
-        for (i, pt) in self.points.iter().enumerate() {
-            let g = jc.gradient(pt.strain, pt.strain_rate_per_s, pt.temperature_c);
-            // A and B are in MPa in the vector: d(sigma/1e6)/d(A_MPa) = dsigma/dA_Pa.
-            out[(i, 0)] = g[0];
-            out[(i, 1)] = g[1];
-            out[(i, 2)] = g[2] / 1e6;
-            out[(i, 3)] = g[3] / 1e6;
-            out[(i, 4)] = g[4] / 1e6;
+        for (i, c) in self.cached.iter().enumerate() {
+            let g = Self::eval(p, c).1;
+            for (k, gk) in g.iter().enumerate() {
+                out[(i, k)] = *gk;
+            }
         }
         Ok(())
     }
@@ -200,4 +260,46 @@ pub fn identify(
         failed_starts: report.failed_starts,
         iterations: report.best.iterations,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn point(strain: f64, rate: f64, t: f64) -> ZonePoint {
+        ZonePoint {
+            x_m: 0.0,
+            gamma: strain * 3f64.sqrt(),
+            gamma_dot_per_s: rate * 3f64.sqrt(),
+            strain,
+            strain_rate_per_s: rate,
+            tau_pa: 0.0,
+            effective_stress_pa: 0.0,
+            work_j_per_m3: 0.0,
+            temperature_c: t,
+        }
+    }
+
+    proptest! {
+        // The cached evaluation equals JcParams::flow_stress / gradient (the reference law, Eq 16).
+        #[test]
+        fn cached_law_equals_reference(
+            a in 100.0..1000.0f64, b in 0.0..1000.0f64, n in 0.0..0.7f64, c in 0.0..0.2f64, m in 0.7..1.3f64,
+            eps in 0.0..3.0f64, lrate in 0.0..12.0f64, t in 0.0..1400.0f64,
+        ) {
+            let k = JcConstants { eps0_per_s: 1.0, tm_c: 1460.0, tr_c: 20.0 };
+            let prob = ZoneFitProblem::new(vec![point(eps, lrate.exp(), t)], k);
+            let pv = DVector::from_vec(vec![a, b, n, c, m]);
+            let (s, g) = ZoneFitProblem::eval(&pv, &prob.cached[0]);
+            let jc = k.params(&pv);
+            let want = jc.flow_stress(eps, lrate.exp(), t) / 1e6;
+            prop_assert!((s - want).abs() <= 1e-9 * want.abs().max(1.0));
+            let gr = jc.gradient(eps, lrate.exp(), t);
+            let scale = [1.0, 1.0, 1e-6, 1e-6, 1e-6];
+            for k in 0..5 {
+                prop_assert!((g[k] - gr[k] * scale[k]).abs() <= 1e-9 * (gr[k] * scale[k]).abs().max(1e-9), "k {}", k);
+            }
+        }
+    }
 }
