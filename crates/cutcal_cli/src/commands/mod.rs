@@ -1,4 +1,5 @@
 //! One module per `cutcal` subcommand: a clap `Args` struct and a `run` function.
 
+pub mod export;
 pub mod identify;
 pub mod run;

@@ -1,0 +1,233 @@
+//! `cutcal export`: FE cards (Abaqus, LS-DYNA, DEFORM-style, MatML) from a material file and a JC
+//! file, rendered by `cutcal_export` and written atomically (issue 4; fe-cards.md).
+//!
+//! The tool material is read from `<tool>.toml` beside the workpiece file when the workpiece's
+//! `[interface]` names one. Everything is rendered before anything is written; each file is written
+//! to a temporary sibling and renamed, and if any write fails the files of this run are removed.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Context, Result};
+use cutcal_export::{
+    render, render_all, Dialect, ExportInput, ExportOptions, Provenance, TemperatureGrid, UnitSystem,
+    STANDARD_CONTACT_PRESSURES_MPA, STANDARD_FLOW_STRAIN_RATES_PER_S, STANDARD_PLASTIC_STRAINS,
+};
+
+use crate::input::jc_file::load_jc;
+use crate::input::material_file::load_material;
+use crate::output::write_atomic;
+
+/// Which cards to write.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum FormatChoice {
+    /// Abaqus: native JC, tabular *PLASTIC variant, VFRIC source for Eq 17.
+    Abaqus,
+    /// LS-DYNA keyword deck.
+    Lsdyna,
+    /// DEFORM-style KEY block and readable sheet (unverified format).
+    Deform,
+    /// MatML 3.1 XML.
+    Matml,
+    /// Every dialect.
+    All,
+}
+
+/// Unit system of the Abaqus and LS-DYNA cards.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum UnitsChoice {
+    /// tonne, mm, s, N, MPa, mJ, K.
+    TonneMmS,
+    /// kg, m, s, N, Pa, J, K.
+    Si,
+}
+
+/// Arguments of `cutcal export`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ExportArgs {
+    /// Workpiece material file (TOML) with an [interface] section, e.g. fixtures/materials/c38.toml.
+    #[arg(long)]
+    pub material: PathBuf,
+    /// Johnson-Cook file (TOML), e.g. fixtures/jc/c38_table5.toml.
+    #[arg(long)]
+    pub jc: PathBuf,
+    /// Which cards to write.
+    #[arg(long, value_enum)]
+    pub format: FormatChoice,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Unit system of the Abaqus and LS-DYNA cards.
+    #[arg(long, value_enum, default_value_t = UnitsChoice::TonneMmS)]
+    pub units: UnitsChoice,
+    /// Lowest table temperature, degC (default: the workpiece's validity range start).
+    #[arg(long)]
+    pub t_from_c: Option<f64>,
+    /// Highest table temperature, degC (default: the workpiece's validity range end).
+    #[arg(long)]
+    pub t_to_c: Option<f64>,
+    /// Table temperature step, degC.
+    #[arg(long, default_value_t = 100.0)]
+    pub t_step_c: f64,
+    /// Strain rate of the tabular Abaqus *PLASTIC variant, 1/s.
+    #[arg(long, default_value_t = 1e4)]
+    pub strain_rate: f64,
+    /// Fraction of plastic work converted to heat (Taylor-Quinney; not given in the paper).
+    #[arg(long, default_value_t = 0.9)]
+    pub heat_fraction: f64,
+    /// Source test named in the headers (default: the JC file name).
+    #[arg(long)]
+    pub source_test: Option<String>,
+    /// Model variant named in the headers.
+    #[arg(long, default_value = "as identified in the JC file")]
+    pub model_variant: String,
+}
+
+/// Runs `cutcal export`.
+///
+/// Returns an error if an input file cannot be read or validated, the interface or tool is
+/// missing, a card cannot be rendered, or a file cannot be written (then no file of this run is
+/// left behind).
+pub fn run(args: &ExportArgs) -> Result<()> {
+    let wp_file = load_material(&args.material)?;
+    let jc = load_jc(&args.jc)?;
+    let iface = wp_file.interface.as_ref().with_context(|| {
+        format!(
+            "{}: no [interface] section (friction and heat transfer are needed by the cards)",
+            args.material.display()
+        )
+    })?;
+    let tool = match &iface.tool {
+        Some(name) => {
+            let dir = args.material.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+            let path = dir.join(format!("{name}.toml"));
+            Some(
+                load_material(&path)
+                    .with_context(|| format!("reading the tool material named by [interface].tool = {name:?}"))?
+                    .material,
+            )
+        }
+        None => None,
+    };
+    let wp = &wp_file.material;
+    let options = ExportOptions {
+        units: match args.units {
+            UnitsChoice::TonneMmS => UnitSystem::TonneMmSecondKelvin,
+            UnitsChoice::Si => UnitSystem::SiKelvin,
+        },
+        temperatures: TemperatureGrid {
+            from_c: args.t_from_c.unwrap_or(wp.thermal.valid_from_c),
+            to_c: args.t_to_c.unwrap_or(wp.thermal.valid_to_c),
+            step_c: args.t_step_c,
+        },
+        plastic_strains: STANDARD_PLASTIC_STRAINS.to_vec(),
+        tabular_strain_rate_per_s: args.strain_rate,
+        flow_strain_rates_per_s: STANDARD_FLOW_STRAIN_RATES_PER_S.to_vec(),
+        contact_pressures_pa: STANDARD_CONTACT_PRESSURES_MPA.iter().map(|p| p * 1e6).collect(),
+        inelastic_heat_fraction: args.heat_fraction,
+    };
+    let jc_name = args.jc.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let provenance = Provenance {
+        cutcal_version: env!("CARGO_PKG_VERSION").to_string(),
+        source_test: args.source_test.clone().unwrap_or_else(|| format!("JC file {jc_name}")),
+        model_variant: args.model_variant.clone(),
+    };
+    let input = ExportInput {
+        workpiece: wp,
+        jc: &jc,
+        tool: tool.as_ref(),
+        interface: &iface.interface,
+        provenance: &provenance,
+        options: &options,
+    };
+    let files = match args.format {
+        FormatChoice::Abaqus => render(Dialect::Abaqus, &input),
+        FormatChoice::Lsdyna => render(Dialect::LsDyna, &input),
+        FormatChoice::Deform => render(Dialect::Deform, &input),
+        FormatChoice::Matml => render(Dialect::MatMl, &input),
+        FormatChoice::All => render_all(&input),
+    }
+    .with_context(|| format!("rendering cards for {} with {}", args.material.display(), args.jc.display()))?;
+    if files.is_empty() {
+        bail!("no cards were rendered");
+    }
+    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let mut written: Vec<PathBuf> = Vec::new();
+    for f in &files {
+        let path = args.out.join(&f.name);
+        if let Err(e) = write_atomic(&path, f.contents.as_bytes()) {
+            for p in &written {
+                let _ = std::fs::remove_file(p);
+            }
+            return Err(e);
+        }
+        written.push(path);
+    }
+    for p in &written {
+        println!("wrote {}", p.display());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fixture(rel: &str) -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(rel)
+    }
+
+    fn args(material: &str, jc: &str, out: &Path) -> ExportArgs {
+        ExportArgs {
+            material: fixture(material),
+            jc: fixture(jc),
+            format: FormatChoice::All,
+            out: out.to_path_buf(),
+            units: UnitsChoice::TonneMmS,
+            t_from_c: None,
+            t_to_c: None,
+            t_step_c: 100.0,
+            strain_rate: 1e4,
+            heat_fraction: 0.9,
+            source_test: None,
+            model_variant: "enhanced DPZD".into(),
+        }
+    }
+
+    #[test]
+    fn export_all_writes_every_dialect_with_the_tool() {
+        let dir = tempfile::tempdir().unwrap();
+        run(&args("fixtures/materials/c38.toml", "fixtures/jc/c38_table5.toml", dir.path())).unwrap();
+        let mut names: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(
+            names,
+            [
+                "c38_abaqus_jc.inp",
+                "c38_abaqus_tabular.inp",
+                "c38_abaqus_vfric.f",
+                "c38_deform.key",
+                "c38_deform_sheet.txt",
+                "c38_lsdyna.k",
+                "c38_matml.xml"
+            ]
+        );
+        let deck = std::fs::read_to_string(dir.path().join("c38_lsdyna.k")).unwrap();
+        // Table 5 (paper): A = 589 MPa on MAT_015 card 2; the H13A tool part comes from h13a.toml.
+        assert!(deck.contains("      589.      145.      0.25     0.069       1.1"));
+        assert!(deck.contains("H13A tool"));
+    }
+
+    #[test]
+    fn a_failed_render_writes_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("cards");
+        let mut a = args("fixtures/materials/c38.toml", "fixtures/jc/c38_table5.toml", &out);
+        a.t_step_c = -5.0;
+        let err = run(&a).unwrap_err();
+        assert!(format!("{err:#}").contains("temperatures"), "{err:#}");
+        assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none());
+    }
+}
