@@ -150,7 +150,8 @@ fn tables(m: &Material, input: &ExportInput<'_>) -> Result<MaterialTables, Expor
     let g = &input.options.temperatures;
     let from = g.from_c.max(m.thermal.valid_from_c);
     let to = g.to_c.min(m.thermal.valid_to_c);
-    if !(to > from) {
+    // NaN-safe: a NaN bound fails `to > from` and is rejected too.
+    if to.partial_cmp(&from) != Some(std::cmp::Ordering::Greater) {
         return Err(ExportError::BadOption {
             field: "temperatures".into(),
             value: format!("[{}, {}] degC", g.from_c, g.to_c),
