@@ -228,8 +228,23 @@ pub fn identify_oxley(
     let problem = JointOxleyProblem::new(material, tests, constants, options)?;
     let b = bounds.to_bounds()?;
     let report = multistart(&problem, &b, multistart_options)?;
-    let stats = fit_statistics(&problem, &b, &report.best.params, &report.best.residuals)?;
     let predictions = problem.predictions(&report.best.params)?;
+    // The covariance needs a Jacobian at the solution; if a perturbed forward solve fails there,
+    // report the fit without covariance rather than failing the identification.
+    let stats = fit_statistics(&problem, &b, &report.best.params, &report.best.residuals).unwrap_or_else(|_| {
+        let ssr = report.best.residuals.norm_squared();
+        let at = b.at_bounds(&report.best.params, 1e-6);
+        FitStatistics {
+            ssr,
+            rms: (ssr / report.best.residuals.len() as f64).sqrt(),
+            at_bounds: at.iter().map(|&i| b.names[i].clone()).collect(),
+            free: (0..b.len()).filter(|i| !at.contains(i)).map(|i| b.names[i].clone()).collect(),
+            covariance: None,
+            correlation: None,
+            std_errors: None,
+            condition_number: None,
+        }
+    });
     Ok(OxleyIdentification {
         jc: constants.params(&report.best.params),
         relative_errors: report.best.residuals.iter().copied().collect(),

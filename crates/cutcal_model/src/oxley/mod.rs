@@ -219,7 +219,19 @@ pub fn predict_from(
     let hints = TemperatureHints::none();
     let ctx = Context { material, jc, conditions, options, physics, hints: &hints };
     let mut solver = Solver::new(ctx, start.map(|p| (p.phi_rad, p.c0)));
-    let search = solver.search_delta()?;
+    let search = match solver.search_delta() {
+        Ok(s) => s,
+        // A warm start must not change whether a solution is found: retry cold.
+        Err(_) if start.is_some() => {
+            let spent = solver.evaluations;
+            hints.ab_c.set(f64::NAN);
+            hints.int_c.set(f64::NAN);
+            solver = Solver::new(ctx, None);
+            solver.evaluations = spent;
+            solver.search_delta()?
+        }
+        Err(e) => return Err(e),
+    };
     let s = search.best.state;
     let (p, i) = (s.primary, s.interface);
     if i.temperature_c >= tm {
