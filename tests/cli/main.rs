@@ -1,5 +1,6 @@
 //! End-to-end tests of the `cutcal` binary: outputs, exit codes and located error messages.
 
+mod bootstrap;
 mod catalogue;
 mod determinism;
 mod identify;

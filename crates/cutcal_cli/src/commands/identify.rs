@@ -72,6 +72,9 @@ pub struct IdentifyArgs {
     /// Write the identified JC set to this TOML (loadable by --jc).
     #[arg(long)]
     pub out_jc: Option<PathBuf>,
+    /// Parameter uncertainty by bootstrap (issue 7; see `commands/bootstrap.rs`).
+    #[command(flatten)]
+    pub uncertainty: super::bootstrap::BootstrapArgs,
 }
 
 /// JC parameters in report units.
@@ -389,6 +392,8 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
     let test = pick_test(&tests, args.test.as_deref(), &mf, &args.tests)?;
     let settings = settings_from_args(args, &mf)?;
     let out = identify_dpzd(&mf, test, &settings)?;
+    // Issue 7: bootstrap before any file is written, so a failed bootstrap leaves nothing behind.
+    let boot = super::bootstrap::run_bootstrap(&args.uncertainty, &mf, test, &settings)?;
     if let Some(p) = &args.fields_csv {
         write_atomic(p, fields_csv(&out.zone, 201)?.as_bytes())?;
     }
@@ -403,9 +408,12 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
         write_atomic(p, jc_toml(&out.identification.jc, src)?.as_bytes())?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&out.report)?);
+        println!("{}", super::bootstrap::report_json(&out.report, boot.as_ref())?);
     } else {
         print!("{}", render_table(&out.report));
+        if let Some(b) = &boot {
+            print!("{}", super::bootstrap::render_bootstrap(b));
+        }
     }
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! One module per `cutcal` subcommand: a clap `Args` struct and a `run` function.
 
 pub mod export;
+pub mod bootstrap;
 pub mod identify;
 pub mod run;

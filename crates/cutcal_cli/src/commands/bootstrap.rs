@@ -1,0 +1,128 @@
+//! `cutcal identify --bootstrap N`: uncertainty of the identified JC parameters from the stated
+//! uncertainty of the measured Fc, Ft and tc (library: [`cutcal_ident::bootstrap`]).
+//!
+//! Each sample perturbs the measurements, rebuilds the test (validated like the CSV reader does),
+//! re-solves the DPZD zone and re-runs the multistart identification with `--bootstrap-starts`
+//! starts (fewer than the nominal fit's: the nominal fit shows how many starts reach the best
+//! minimum). Samples run in parallel on rayon's pool (`RAYON_NUM_THREADS` sets its size); the
+//! report does not depend on the thread count.
+
+use std::fmt::Write as _;
+
+use anyhow::{Context, Result};
+use cutcal_ident::bootstrap::{bootstrap, BootstrapOptions, BootstrapReport, Measurement, RelativeUncertainty};
+use cutcal_ident::{identify_from_zone, IdentError, JcConstants, MultistartOptions};
+use cutcal_model::dpzd::{self, ShearPlaneState};
+use cutcal_model::CuttingTest;
+use serde::Serialize;
+
+use super::identify::{jc_bounds, DpzdIdentifyReport, DpzdSettings};
+use crate::input::material_file::MaterialFile;
+
+/// Bootstrap options of `cutcal identify`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct BootstrapArgs {
+    /// Resample the measured Fc, Ft and tc this many times and report the JC parameter spread (0: off).
+    #[arg(long, default_value_t = 0)]
+    pub bootstrap: usize,
+    /// Relative standard uncertainty of the measured forces (0.03 = 3 %).
+    #[arg(long, default_value_t = 0.03)]
+    pub force_uncertainty: f64,
+    /// Relative standard uncertainty of the measured chip thickness (0.05 = 5 %).
+    #[arg(long, default_value_t = 0.05)]
+    pub chip_uncertainty: f64,
+    /// Multistart starts per bootstrap sample.
+    #[arg(long, default_value_t = 4)]
+    pub bootstrap_starts: usize,
+}
+
+/// Runs the bootstrap when `--bootstrap N` asks for it (`None` when N = 0).
+///
+/// The master seed is the identification's `--seed`.
+///
+/// Returns an error if the options are out of range, the test lacks a measurement, or fewer than
+/// two samples can be identified.
+pub fn run_bootstrap(
+    args: &BootstrapArgs,
+    mf: &MaterialFile,
+    test: &CuttingTest,
+    settings: &DpzdSettings,
+) -> Result<Option<BootstrapReport>> {
+    if args.bootstrap == 0 {
+        return Ok(None);
+    }
+    let uncertainty = RelativeUncertainty::new(args.force_uncertainty, args.chip_uncertainty)
+        .context("--force-uncertainty / --chip-uncertainty")?;
+    if !(1..=1000).contains(&args.bootstrap_starts) {
+        anyhow::bail!("--bootstrap-starts must be in 1..=1000, got {}", args.bootstrap_starts);
+    }
+    let missing = |what: &str| format!("test {}: --bootstrap needs the measured {what}", test.id);
+    let nominal = Measurement {
+        cutting_force_n_per_m: test.measured.cutting_force_n_per_m.with_context(|| missing("cutting force"))?,
+        feed_force_n_per_m: test.measured.feed_force_n_per_m.with_context(|| missing("feed force"))?,
+        chip_thickness_m: test.measured.chip_thickness_m.with_context(|| missing("chip thickness"))?,
+    };
+    let config = settings.config()?;
+    let bounds = jc_bounds(mf)?;
+    let constants = JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };
+    let multistart = MultistartOptions { starts: args.bootstrap_starts, ..settings.multistart };
+    let identify = |m: &Measurement| -> Result<cutcal_model::JcParams, IdentError> {
+        let t = test
+            .clone()
+            .with_forces(Some(m.cutting_force_n_per_m), Some(m.feed_force_n_per_m))?
+            .with_chip_thickness(Some(m.chip_thickness_m))?;
+        let state = ShearPlaneState::from_test(&t)?;
+        let zone = dpzd::solve(&mf.material, &state, &config)?;
+        Ok(identify_from_zone(&zone, settings.points, &bounds, constants, &multistart)?.jc)
+    };
+    let options = BootstrapOptions { samples: args.bootstrap, seed: settings.multistart.seed, uncertainty };
+    let report = bootstrap(&nominal, &options, identify)
+        .with_context(|| format!("bootstrap of test {} ({} samples)", test.id, args.bootstrap))?;
+    Ok(Some(report))
+}
+
+/// The identification report with a `bootstrap` key appended (field order kept).
+#[derive(Serialize)]
+struct WithBootstrap<'a> {
+    #[serde(flatten)]
+    report: &'a DpzdIdentifyReport,
+    bootstrap: &'a BootstrapReport,
+}
+
+/// Pretty JSON of the report, with a `bootstrap` key when there is one (byte-identical to the
+/// report alone otherwise).
+pub fn report_json(report: &DpzdIdentifyReport, boot: Option<&BootstrapReport>) -> Result<String> {
+    Ok(match boot {
+        None => serde_json::to_string_pretty(report)?,
+        Some(b) => serde_json::to_string_pretty(&WithBootstrap { report, bootstrap: b })?,
+    })
+}
+
+/// Human-readable table of a bootstrap report.
+#[must_use]
+pub fn render_bootstrap(b: &BootstrapReport) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "  bootstrap: {} samples ({} failed), Fc/Ft +-{:.1} %, tc +-{:.1} % (1 sigma), seed {}",
+        b.samples,
+        b.failed,
+        100.0 * b.uncertainty.force,
+        100.0 * b.uncertainty.chip_thickness,
+        b.seed
+    );
+    let _ = writeln!(s, "  parameter        mean         std        2.5 %       97.5 %");
+    for p in &b.parameters {
+        let _ = writeln!(s, "  {:<8} {:>11.5} {:>11.5} {:>12.5} {:>12.5}", p.name, p.mean, p.std, p.q025, p.q975);
+    }
+    let _ = writeln!(s, "  bootstrap correlation (- where a parameter does not vary):");
+    for row in &b.correlation {
+        let cells: Vec<String> =
+            row.iter().map(|c| c.map_or_else(|| format!("{:>7}", "-"), |v| format!("{v:>7.3}"))).collect();
+        let _ = writeln!(s, "    {}", cells.join(" "));
+    }
+    if let Some(f) = &b.first_failure {
+        let _ = writeln!(s, "  first failed sample: {f}");
+    }
+    s
+}
