@@ -3,4 +3,6 @@
 pub mod export;
 pub mod bootstrap;
 pub mod identify;
+pub mod identify_oxley;
+pub mod predict;
 pub mod run;
