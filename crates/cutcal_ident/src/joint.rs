@@ -16,6 +16,7 @@
 //! forward model for machinability data); the forward model is [`cutcal_model::oxley`].
 
 use std::cell::RefCell;
+use std::collections::HashMap;
 
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
@@ -72,6 +73,9 @@ pub struct JointOxleyProblem<'a> {
     constants: JcConstants,
     options: &'a JointOptions,
     warm: RefCell<Vec<Option<OxleyPrediction>>>,
+    /// Every successful evaluation, keyed by the parameter bits: re-evaluating a point (e.g. the
+    /// multistart's best) returns the solution found there, whatever warm start came since.
+    seen: RefCell<HashMap<[u64; 5], Vec<OxleyPrediction>>>,
 }
 
 impl<'a> JointOxleyProblem<'a> {
@@ -107,6 +111,7 @@ impl<'a> JointOxleyProblem<'a> {
         Ok(Self {
             material,
             warm: RefCell::new(vec![None; conditions.len()]),
+            seen: RefCell::new(HashMap::new()),
             conditions,
             observations,
             constants,
@@ -122,6 +127,10 @@ impl<'a> JointOxleyProblem<'a> {
 
     /// Forward predictions of every test at parameters `p = [A_MPa, B_MPa, n, C, m]`.
     pub fn predictions(&self, p: &DVector<f64>) -> Result<Vec<OxleyPrediction>, IdentError> {
+        let key = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits(), p[3].to_bits(), p[4].to_bits()];
+        if let Some(found) = self.seen.borrow().get(&key) {
+            return Ok(found.clone());
+        }
         let jc = self.constants.params(p);
         let mut warm = self.warm.borrow_mut();
         let mut out = Vec::with_capacity(self.conditions.len());
@@ -137,6 +146,7 @@ impl<'a> JointOxleyProblem<'a> {
             warm[i] = Some(pred);
             out.push(pred);
         }
+        self.seen.borrow_mut().insert(key, out.clone());
         Ok(out)
     }
 }
