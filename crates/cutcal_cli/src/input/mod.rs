@@ -2,6 +2,8 @@
 //!
 //! Every error names the file, the line (where the format has lines), the field and the value.
 
+#[cfg(test)]
+mod fuzz;
 pub mod jc_file;
 pub mod material_file;
 pub mod tests_csv;
@@ -169,7 +171,12 @@ pub(crate) fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str
         let span = e.span().map(|s| s.start.min(text.len())..s.end.min(text.len()));
         let line = span.as_ref().map(|s| line_of(text, s.start));
         let value = span.as_ref().map(|s| offending_text(text, s.clone())).unwrap_or_default();
-        let mut err = InputError::new(path, line, "(toml)", value, e.message().trim().to_string());
+        // The TOML reader gives some errors (e.g. a control character) an empty message.
+        let reason = match e.message().trim() {
+            "" => "invalid TOML at this position (a control character or a misplaced token)".to_string(),
+            m => m.to_string(),
+        };
+        let mut err = InputError::new(path, line, "(toml)", printable(&value), reason);
         err.column = span.as_ref().map(|s| column_of(text, s.start));
         err
     })
@@ -187,6 +194,11 @@ fn offending_text(text: &str, span: std::ops::Range<usize>) -> String {
     let token: String = rest.chars().take_while(|c| !c.is_whitespace() && !",]}#".contains(*c)).collect();
     let best = if token.len() > spanned.trim().len() { token.as_str() } else { spanned.trim() };
     best.chars().take(80).collect()
+}
+
+/// `text` with control characters escaped (`\0`, `\u{1b}`), so a message never carries them raw.
+fn printable(text: &str) -> String {
+    text.chars().map(|c| if c.is_control() { c.escape_default().to_string() } else { c.to_string() }).collect()
 }
 
 /// 1-based character column of a byte offset in `text`.
