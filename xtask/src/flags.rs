@@ -16,6 +16,28 @@ pub struct Xtask {
 pub enum Task {
     /// Run every project in fixtures/projects through the whole chain into target/pipeline/.
     Pipeline(PipelineFlags),
+    /// Blind benchmark of discrepancy discovery on concealed mechanisms (issue 6).
+    Concealed(ConcealedFlags),
+}
+
+/// Options of `cargo xtask concealed`.
+#[derive(Debug, clap::Args)]
+pub struct ConcealedFlags {
+    /// Number of datasets.
+    #[arg(long, default_value_t = 200)]
+    pub datasets: usize,
+    /// Seed of the generator.
+    #[arg(long, default_value_t = 2024)]
+    pub seed: u64,
+    /// Output directory (data/, truth.json, outcomes.json, summary.md).
+    #[arg(long, default_value = "target/concealed")]
+    pub out: PathBuf,
+    /// Also write the summary table here (e.g. docs/concealed.md).
+    #[arg(long)]
+    pub markdown: Option<PathBuf>,
+    /// Worker threads.
+    #[arg(long, default_value_t = 2)]
+    pub threads: usize,
 }
 
 /// Options of `cargo xtask pipeline`.

@@ -3,6 +3,7 @@
 // xtask is a command-line program: printing is its job.
 #![allow(clippy::print_stdout, clippy::print_stderr)]
 
+mod concealed;
 mod flags;
 mod pipeline;
 mod tidy;
@@ -25,6 +26,13 @@ fn main() -> ExitCode {
     }
     let result = match flags.task {
         flags::Task::Pipeline(f) => pipeline::run(&f),
+        flags::Task::Concealed(f) => concealed::run(&concealed::ConcealedOptions {
+            datasets: f.datasets,
+            seed: f.seed,
+            out: f.out,
+            markdown: f.markdown,
+            threads: f.threads,
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -69,6 +69,8 @@ struct Candidate {
     ci: Vec<(f64, f64, f64)>,
     ci_ok: bool,
     change: Vec<f64>,
+    /// Screening sensitivity of the first parameter (noise units per typical magnitude).
+    sens: Vec<f64>,
     loco_after: Option<Loco>,
     significant: bool,
     accepted: bool,
@@ -206,7 +208,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     let mismatch = locate(tests, &pr.obs, &base.preds, &noise);
 
     // Which mechanisms can be tested at all.
-    let has_beta = base.preds.iter().all(|p| p.beta.is_some());
+    let has_beta = base.preds.iter().all(|p| p.beta.is_some()) || sim.supports(crate::simulator::Hook::HeatPartition);
     let mut usable = Vec::new();
     let mut not_testable = Vec::new();
     for &m in &cfg.mechanisms {
@@ -372,7 +374,24 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     } else if !ambiguous.is_empty() {
         Verdict::Ambiguous
     } else if base_loco.is_none() && global.p_value < 0.01 {
-        // Too few conditions to validate anything: list what could explain the misfit.
+        // Too few conditions to validate anything: list what could explain the misfit as a whole,
+        // or the sign of a clearly missed output (its screening sensitivity points the same way
+        // and carries at least 30 % of the mechanism's largest effect).
+        for m in mismatch.iter().filter(|m| m.p_value < 0.01) {
+            let j = OUTPUTS.iter().position(|o| *o == m.output).unwrap_or(0);
+            for c in &first_round {
+                let idx: Vec<usize> = (0..pr.obs.len()).filter(|&i| pr.obs[i].output == j).collect();
+                let smax = c.sens.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+                let agree = idx.iter().all(|&i| {
+                    // The residual is measured - model; a mechanism adding model output s moves the
+                    // residual by -s, so it explains the gap when s has the sign of the residual.
+                    -c.sens[i] * base.resid[i] > 0.0 && c.sens[i].abs() >= 0.3 * smax
+                });
+                if agree && !idx.is_empty() && !ambiguous.contains(&c.id) {
+                    ambiguous.push(c.id);
+                }
+            }
+        }
         for c in &first_round {
             let moved = c
                 .fit
@@ -381,7 +400,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 .skip(base.k)
                 .zip(info(c.id).params.iter())
                 .any(|(v, pi)| (v - pi.off).abs() > 1e-3 * (pi.upper - pi.lower));
-            if c.explained >= 0.5 && moved {
+            if c.explained >= 0.5 && moved && !ambiguous.contains(&c.id) {
                 ambiguous.push(c.id);
             }
         }
@@ -510,7 +529,9 @@ fn screen_and_refit(
     let (_, lo, hi, _) = fit::layout(pr.sim, current_spec);
     let cols: Vec<usize> = (0..current.k).collect();
     let steps: Vec<f64> = (0..current.k).map(|i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
-    let j = data_jacobian(pr.sim, pr.tests, &pr.obs, current_spec, &noise, &current.x, &cols, &steps)?;
+    // A Jacobian probe outside the model's solvable region leaves the screen unprojected.
+    let j = data_jacobian(pr.sim, pr.tests, &pr.obs, current_spec, &noise, &current.x, &cols, &steps)
+        .unwrap_or_else(|_| DMatrix::zeros(n, 0));
     let e = DVector::from_vec(current.resid.clone());
     let dof = n.saturating_sub(current.k);
     let s2 = if dof > 0 { (current.rss / dof as f64).max(1e-12) } else { 1.0 };
@@ -520,6 +541,7 @@ fn screen_and_refit(
         u: f64,
         p: f64,
         absorption: f64,
+        sens: Vec<f64>,
     }
     let mut screened = Vec::new();
     for &m in remaining {
@@ -538,16 +560,25 @@ fn screen_and_refit(
             let mut s = DMatrix::zeros(n, d);
             let mut x = current.x.clone();
             x.extend(inf.params.iter().take(d).map(|p| p.off));
-            let r0 = fit::residuals(&pr.obs, &fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &x)?, &noise);
+            let Ok(p0) = fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &x) else { continue };
+            let r0 = fit::residuals(&pr.obs, &p0, &noise);
+            let mut failed = false;
             for c in 0..d {
                 let pi = inf.params[c];
                 let h = 0.1 * (pi.typical - pi.off);
                 let mut xp = x.clone();
                 xp[current.k + c] += h;
-                let rp = fit::residuals(&pr.obs, &fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &xp)?, &noise);
+                let Ok(pp) = fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &xp) else {
+                    failed = true;
+                    break;
+                };
+                let rp = fit::residuals(&pr.obs, &pp, &noise);
                 for i in 0..n {
                     s[(i, c)] = (rp[i] - r0[i]) / h * (pi.typical - pi.off);
                 }
+            }
+            if failed {
+                continue;
             }
             let sp = project_out(&j, &s);
             let total = s.norm_squared();
@@ -562,7 +593,7 @@ fn screen_and_refit(
             };
             let p = if dof > d { stats::f_sf(u / d as f64, d as f64, (dof - d) as f64) } else { f64::NAN };
             if best.as_ref().map_or(true, |b| u > b.u) {
-                best = Some(Screened { id: m, spec, u, p, absorption });
+                best = Some(Screened { id: m, spec, u, p, absorption, sens: s.column(0).iter().copied().collect() });
             }
         }
         if let Some(b) = best {
@@ -570,7 +601,8 @@ fn screen_and_refit(
         }
     }
     screened.sort_by(|a, b| b.u.total_cmp(&a.u));
-    let tiny = dof < 3;
+    // Tiny designs (no held-out validation possible, or few degrees of freedom): refit everything.
+    let tiny = pr.groups.len() < 3 || dof < 6;
     let chosen: Vec<Screened> =
         screened.into_iter().enumerate().filter(|(r, s)| tiny || (*r < 4 && s.p < 0.25)).map(|(_, s)| s).collect();
     let mut out = Vec::new();
@@ -638,6 +670,7 @@ fn screen_and_refit(
             ci,
             ci_ok,
             change,
+            sens: s.sens,
             loco_after: None,
             significant: false,
             accepted: false,

@@ -205,7 +205,15 @@ pub fn fit(
         match minimise(&problem, &bounds, &DVector::from_vec(x0.clone()), &opts) {
             Ok(r) => r.params.iter().copied().collect(),
             Err(IdentError::Underdetermined { .. }) => x0,
-            Err(e) => return Err(DiagnoseError::Fit(e.to_string())),
+            // A failure away from the start (a finite-difference probe outside the model's solvable
+            // region) is retried once with a short, heavily damped run; then the error stands.
+            Err(e) => {
+                let short = LmOptions { max_iterations: 5, ..opts };
+                match minimise(&problem, &bounds, &DVector::from_vec(x0.clone()), &short) {
+                    Ok(r) => r.params.iter().copied().collect(),
+                    Err(_) => return Err(DiagnoseError::Fit(e.to_string())),
+                }
+            }
         }
     };
     let preds = predict(sim, tests, spec, &spec.ctx, &x)?;

@@ -19,4 +19,4 @@ pub mod simulator;
 pub use diagnose::{diagnose, Config};
 pub use mechanism::MechanismId;
 pub use report::{Report, Verdict};
-pub use simulator::{FixedSimulation, LiteSimulator, Prediction, Simulator};
+pub use simulator::{FixedSimulation, LiteSimulator, OxleySimulator, Prediction, Simulator};

@@ -265,3 +265,102 @@ impl Simulator for LiteSimulator {
         Some(self.jc(theta))
     }
 }
+
+/// Mode B with cutcal's full forward model: the extended Oxley model of `cutcal_model::oxley`
+/// (Lalwani et al. 2009) with JC as the baseline.
+///
+/// In-model hooks used: interface friction factor (M4), heat-partition scale (M6) and the rake
+/// angle (built-up edge). Its thermal-softening hook can only weaken softening (scale <= 1), so
+/// extra softening (M7) and the flow-stress multiplier (M10) fall back to output-level corrections;
+/// edge and flank forces are added on the outputs by the mechanism layer.
+#[derive(Debug, Clone)]
+pub struct OxleySimulator {
+    material: Material,
+    nominal: JcParams,
+    params: Vec<ParamSpec>,
+}
+
+impl OxleySimulator {
+    /// JC free (weak priors at `nominal`, bounds `bx`) when `free`, fixed otherwise.
+    #[must_use]
+    pub fn new(material: &Material, nominal: JcParams, bx: &JcBox, free: bool) -> Self {
+        let params = if free { jc_param_specs(&nominal, bx) } else { Vec::new() };
+        Self { material: material.clone(), nominal, params }
+    }
+}
+
+impl Simulator for OxleySimulator {
+    fn baseline_params(&self) -> &[ParamSpec] {
+        &self.params
+    }
+    fn supports(&self, hook: Hook) -> bool {
+        matches!(hook, Hook::FrictionFactor | Hook::HeatPartition | Hook::RakeShift)
+    }
+    fn can_extrapolate(&self) -> bool {
+        true
+    }
+    fn simulate(
+        &self,
+        tests: &[CuttingTest],
+        theta: &[f64],
+        hooks: &[Hooks],
+    ) -> Result<Vec<Prediction>, DiagnoseError> {
+        use cutcal_model::oxley::{self, CuttingConditions, OxleyOptions, Physics};
+        let jc = if theta.len() >= 5 {
+            JcParams {
+                a_pa: theta[0].exp() * 1e6,
+                b_pa: theta[1].exp() * 1e6,
+                n: theta[2],
+                c: theta[3],
+                m: theta[4],
+                ..self.nominal
+            }
+        } else {
+            self.nominal
+        };
+        let options = OxleyOptions::wide();
+        tests
+            .iter()
+            .zip(hooks)
+            .map(|(t, h)| {
+                let err = |e| DiagnoseError::Model { test: t.id.clone(), source: e };
+                let cond = CuttingConditions::new(
+                    t.speed_m_per_s,
+                    t.uncut_chip_thickness_m,
+                    t.width_m,
+                    t.rake_rad + h.rake_shift_rad,
+                    self.material.room_c,
+                )
+                .map_err(err)?;
+                let physics = Physics {
+                    interface_friction_factor: h.friction_factor.clamp(1e-3, 1.0),
+                    heat_partition_scale: h.heat_partition_scale.clamp(1e-3, 3.0),
+                    ..Physics::baseline()
+                };
+                let p = oxley::predict(&self.material, &jc, &cond, &options, &physics).map_err(err)?;
+                Ok(Prediction {
+                    fc_n_per_m: p.cutting_force_n_per_m + h.edge_fc_n_per_m,
+                    ft_n_per_m: p.feed_force_n_per_m + h.edge_ft_n_per_m,
+                    chip_m: p.chip_thickness_m,
+                    t_ab_c: Some(p.temperature_ab_c),
+                    t_int_c: Some(p.temperature_int_c),
+                    beta: None,
+                })
+            })
+            .collect()
+    }
+    fn jc_at(&self, theta: &[f64]) -> Option<JcParams> {
+        if theta.len() >= 5 {
+            Some(JcParams {
+                a_pa: theta[0].exp() * 1e6,
+                b_pa: theta[1].exp() * 1e6,
+                n: theta[2],
+                c: theta[3],
+                m: theta[4],
+                ..self.nominal
+            })
+        } else {
+            Some(self.nominal)
+        }
+    }
+}

@@ -6,3 +6,4 @@ pub mod identify;
 pub mod identify_oxley;
 pub mod predict;
 pub mod run;
+pub mod diagnose;
