@@ -107,6 +107,25 @@ impl ShearPlaneState {
         let tau_max_pa = kinematics::tau_max_from_forces(fc, ft, phi, test.uncut_chip_thickness_m)?;
         Ok(Self { speed_m_per_s: test.speed_m_per_s, rake_rad: test.rake_rad, shear_angle_rad: phi, tau_max_pa })
     }
+
+    /// Checks a state built by hand (the fields are public): `0 < V <= 200 m/s`,
+    /// `-45 deg < alpha < 45 deg`, `0 < phi < 90 deg`, `tau_max > 0` finite.
+    ///
+    /// Returns an error naming the first field out of range (found by fuzzing: a denormal negative
+    /// shear angle gave an exit temperature of -inf instead of an error).
+    pub fn validate(&self) -> Result<(), ModelError> {
+        crate::error::check_range("speed_m_per_s", self.speed_m_per_s, 0.0, 200.0, "0 < V <= 200 m/s")?;
+        let lim = 45f64.to_radians();
+        if !(self.rake_rad.is_finite() && self.rake_rad > -lim && self.rake_rad < lim) {
+            return Err(ModelError::out_of_range("rake_rad", self.rake_rad, "-45 deg < alpha < 45 deg"));
+        }
+        let phi = self.shear_angle_rad;
+        if !(phi.is_finite() && phi > 1e-6 && phi < std::f64::consts::FRAC_PI_2) {
+            return Err(ModelError::out_of_range("shear_angle_rad", phi, "1e-6 < phi < pi/2 rad"));
+        }
+        crate::error::check_range("tau_max_pa", self.tau_max_pa, 0.0, 1e11, "0 < tau_max <= 1e11 Pa")?;
+        Ok(())
+    }
 }
 
 /// How the zone converts plastic work into temperature.
@@ -175,9 +194,11 @@ pub struct ZoneSolution {
 ///
 /// **Source:** paper Eqs 2-8, 11-12; enhanced fixed point Sec 3.5 (Fig 3).
 ///
-/// Returns an error if the material has no yield law, `tau_max` does not exceed the entry shear
+/// Returns an error if the state is out of range ([`ShearPlaneState::validate`]), the material
+/// has no yield law, `tau_max` does not exceed the entry shear
 /// strength, a temperature reaches melting, or the fixed point does not converge within its cap.
 pub fn solve(material: &Material, state: &ShearPlaneState, config: &DpzdConfig) -> Result<ZoneSolution, ModelError> {
+    state.validate()?;
     let h = config.zone_thickness_m;
     let r = config.r;
     let phi = state.shear_angle_rad;
