@@ -27,6 +27,10 @@ pub struct Cli {
 pub enum Command {
     /// Identify Johnson-Cook parameters from a cutting test (DPZD, paper Eq 15).
     Identify(commands::identify::IdentifyArgs),
+    /// Predict Fc, Ft, tc and temperatures with the extended Oxley model (Lalwani 2009).
+    Predict(commands::predict::PredictArgs),
+    /// Write FE cards (Abaqus, LS-DYNA, DEFORM-style, MatML) from a material and a JC file.
+    Export(commands::export::ExportArgs),
     /// Run a whole project: identification, cards, predictions, report.
     Run(commands::run::RunArgs),
 }
@@ -36,5 +40,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Identify(a) => commands::identify::run(&a),
         Command::Run(a) => commands::run::run(&a),
+        Command::Export(a) => commands::export::run(&a),
+        Command::Predict(a) => commands::predict::run(&a),
     }
 }

@@ -9,12 +9,14 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use cutcal_export::{
-    render, render_all, Dialect, ExportInput, ExportOptions, Provenance, TemperatureGrid, UnitSystem,
+    render, render_all, Dialect, ExportFile, ExportInput, ExportOptions, Provenance, TemperatureGrid, UnitSystem,
     STANDARD_CONTACT_PRESSURES_MPA, STANDARD_FLOW_STRAIN_RATES_PER_S, STANDARD_PLASTIC_STRAINS,
 };
 
 use crate::input::jc_file::load_jc;
-use crate::input::material_file::load_material;
+use cutcal_model::{JcParams, Material};
+
+use crate::input::material_file::{load_material, InterfaceSection, MaterialFile};
 use crate::output::write_atomic;
 
 /// Which cards to write.
@@ -82,6 +84,63 @@ pub struct ExportArgs {
     pub model_variant: String,
 }
 
+/// The interface section of a workpiece file, or a located error.
+pub fn interface_of(wp_file: &MaterialFile) -> Result<&InterfaceSection> {
+    wp_file.interface.as_ref().with_context(|| {
+        format!(
+            "{}: no [interface] section (friction and heat transfer are needed by the cards)",
+            wp_file.path.display()
+        )
+    })
+}
+
+/// The tool material named by `[interface].tool`, read from `<tool>.toml` beside the workpiece file.
+pub fn load_tool(wp_file: &MaterialFile) -> Result<Option<Material>> {
+    match wp_file.interface.as_ref().and_then(|i| i.tool.as_ref()) {
+        Some(name) => {
+            let dir = wp_file.path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+            let path = dir.join(format!("{name}.toml"));
+            Ok(Some(
+                load_material(&path)
+                    .with_context(|| format!("reading the tool material named by [interface].tool = {name:?}"))?
+                    .material,
+            ))
+        }
+        None => Ok(None),
+    }
+}
+
+/// The default export options of a workpiece: its thermal range every 100 K, the standard strain
+/// and pressure grids, 1e4 1/s for the tabular card, heat fraction 0.9.
+#[must_use]
+pub fn standard_options(wp: &Material) -> ExportOptions {
+    ExportOptions {
+        units: UnitSystem::TonneMmSecondKelvin,
+        temperatures: TemperatureGrid { from_c: wp.thermal.valid_from_c, to_c: wp.thermal.valid_to_c, step_c: 100.0 },
+        plastic_strains: STANDARD_PLASTIC_STRAINS.to_vec(),
+        tabular_strain_rate_per_s: 1e4,
+        flow_strain_rates_per_s: STANDARD_FLOW_STRAIN_RATES_PER_S.to_vec(),
+        contact_pressures_pa: STANDARD_CONTACT_PRESSURES_MPA.iter().map(|p| p * 1e6).collect(),
+        inelastic_heat_fraction: 0.9,
+    }
+}
+
+/// Every card of every dialect for a workpiece file and a JC set, with the standard options.
+pub fn render_cards(wp_file: &MaterialFile, jc: &JcParams, provenance: &Provenance) -> Result<Vec<ExportFile>> {
+    let iface = interface_of(wp_file)?;
+    let tool = load_tool(wp_file)?;
+    let options = standard_options(&wp_file.material);
+    let input = ExportInput {
+        workpiece: &wp_file.material,
+        jc,
+        tool: tool.as_ref(),
+        interface: &iface.interface,
+        provenance,
+        options: &options,
+    };
+    render_all(&input).with_context(|| format!("rendering cards for {}", wp_file.path.display()))
+}
+
 /// Runs `cutcal export`.
 ///
 /// Returns an error if an input file cannot be read or validated, the interface or tool is
@@ -90,24 +149,8 @@ pub struct ExportArgs {
 pub fn run(args: &ExportArgs) -> Result<()> {
     let wp_file = load_material(&args.material)?;
     let jc = load_jc(&args.jc)?;
-    let iface = wp_file.interface.as_ref().with_context(|| {
-        format!(
-            "{}: no [interface] section (friction and heat transfer are needed by the cards)",
-            args.material.display()
-        )
-    })?;
-    let tool = match &iface.tool {
-        Some(name) => {
-            let dir = args.material.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-            let path = dir.join(format!("{name}.toml"));
-            Some(
-                load_material(&path)
-                    .with_context(|| format!("reading the tool material named by [interface].tool = {name:?}"))?
-                    .material,
-            )
-        }
-        None => None,
-    };
+    let iface = interface_of(&wp_file)?;
+    let tool = load_tool(&wp_file)?;
     let wp = &wp_file.material;
     let options = ExportOptions {
         units: match args.units {
@@ -119,11 +162,12 @@ pub fn run(args: &ExportArgs) -> Result<()> {
             to_c: args.t_to_c.unwrap_or(wp.thermal.valid_to_c),
             step_c: args.t_step_c,
         },
-        plastic_strains: STANDARD_PLASTIC_STRAINS.to_vec(),
+        ..standard_options(wp)
+    };
+    let options = ExportOptions {
         tabular_strain_rate_per_s: args.strain_rate,
-        flow_strain_rates_per_s: STANDARD_FLOW_STRAIN_RATES_PER_S.to_vec(),
-        contact_pressures_pa: STANDARD_CONTACT_PRESSURES_MPA.iter().map(|p| p * 1e6).collect(),
         inelastic_heat_fraction: args.heat_fraction,
+        ..options
     };
     let jc_name = args.jc.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let provenance = Provenance {

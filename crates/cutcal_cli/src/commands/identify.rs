@@ -24,6 +24,16 @@ pub enum ModelChoice {
     Enhanced,
 }
 
+/// Identification method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// One test through the DPZD model (paper Eq 15).
+    Dpzd,
+    /// All measured tests at once through the extended Oxley forward model (OXCUT-style).
+    Oxley,
+}
+
 /// Arguments of `cutcal identify`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct IdentifyArgs {
@@ -36,6 +46,13 @@ pub struct IdentifyArgs {
     /// Test id to identify from (default: the material's `dpzd.identification_test`).
     #[arg(long)]
     pub test: Option<String>,
+    /// Identification method: `dpzd` (one test, paper Eq 15) or `oxley` (every measured test
+    /// through the forward model; Fc, Ft and tc as relative errors).
+    #[arg(long, value_enum, default_value_t = Method::Dpzd)]
+    pub method: Method,
+    /// Skip the chip thickness in the joint Oxley fit even where measured.
+    #[arg(long)]
+    pub no_chip: bool,
     /// DPZD model variant.
     #[arg(long, value_enum, default_value_t = ModelChoice::Enhanced)]
     pub model: ModelChoice,
@@ -48,9 +65,9 @@ pub struct IdentifyArgs {
     /// Strain-rate exponent r of Eq 2 (default: the material's `dpzd.r`).
     #[arg(long)]
     pub r: Option<f64>,
-    /// Multistart starts.
-    #[arg(long, default_value_t = 32)]
-    pub starts: usize,
+    /// Multistart starts (default 32 for `dpzd`; 4 for `oxley`, whose starts take ~1 s each).
+    #[arg(long)]
+    pub starts: Option<usize>,
     /// Multistart seed.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -316,7 +333,7 @@ pub fn settings_from_args(args: &IdentifyArgs, mf: &MaterialFile) -> Result<Dpzd
         rho_cp_original_j_per_m3_k: rho_cp * 1e6,
         tolerance_c: args.tolerance_c,
         max_iterations: args.max_iterations,
-        multistart: MultistartOptions::new(args.starts, args.seed),
+        multistart: MultistartOptions::new(args.starts.unwrap_or(32), args.seed),
     })
 }
 
@@ -387,6 +404,17 @@ pub fn render_table(r: &DpzdIdentifyReport) -> String {
 
 /// Runs `cutcal identify` (DPZD method).
 pub fn run(args: &IdentifyArgs) -> Result<()> {
+    if args.method == Method::Oxley {
+        return super::identify_oxley::run(&super::identify_oxley::IdentifyOxleyArgs {
+            material: args.material.clone(),
+            tests: args.tests.clone(),
+            starts: args.starts.unwrap_or(4),
+            seed: args.seed,
+            json: args.json,
+            work_temperature_c: None,
+            no_chip: args.no_chip,
+        });
+    }
     let mf = load_material(&args.material)?;
     let tests = load_tests(&args.tests)?;
     let test = pick_test(&tests, args.test.as_deref(), &mf, &args.tests)?;

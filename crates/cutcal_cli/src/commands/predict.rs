@@ -293,6 +293,27 @@ pub fn table(report: &PredictReport) -> String {
     s
 }
 
+/// Predicts every test with the baseline physics; a failed solve becomes a row with its error.
+#[must_use]
+pub fn predict_rows(
+    material: &cutcal_model::Material,
+    jc: &cutcal_model::JcParams,
+    tests: &[CuttingTest],
+    options: &OxleyOptions,
+    work_temperature_c: f64,
+) -> Vec<PredictRow> {
+    let physics = Physics::baseline();
+    tests
+        .iter()
+        .map(|t| {
+            let result = CuttingConditions::from_test(t, work_temperature_c)
+                .and_then(|c| oxley::predict(material, jc, &c, options, &physics))
+                .map_err(|e| e.to_string());
+            row(t, result)
+        })
+        .collect()
+}
+
 /// Runs `cutcal predict`.
 pub fn run(args: &PredictArgs) -> Result<()> {
     let report = predict_report(args)?;
@@ -320,14 +341,7 @@ pub fn predict_report(args: &PredictArgs) -> Result<PredictReport> {
     )
     .with_context(|| format!("Oxley options for {}", args.material.display()))?;
     let work_c = args.work_temperature_c.unwrap_or(mf.material.room_c);
-    let physics = Physics::baseline();
-    let mut rows = Vec::with_capacity(tests.len());
-    for t in &tests {
-        let result = CuttingConditions::from_test(t, work_c)
-            .and_then(|c| oxley::predict(&mf.material, &jc, &c, &options, &physics))
-            .map_err(|e| e.to_string());
-        rows.push(row(t, result));
-    }
+    let rows = predict_rows(&mf.material, &jc, &tests, &options, work_c);
     Ok(PredictReport { material: mf.material.name.clone(), options, work_temperature_c: work_c, rows })
 }
 

@@ -75,6 +75,39 @@ pub struct ProjectFile {
     /// Identification settings; absent: no DPZD identification.
     #[serde(default)]
     pub identify: Option<ProjectIdentify>,
+    /// Joint Oxley identification over every measured test; absent: not run.
+    #[serde(default)]
+    pub joint: Option<ProjectJoint>,
+    /// Forward predictions of every test with the JC set used (default true).
+    #[serde(default = "yes")]
+    pub predict: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// Joint (OXCUT-style) identification settings of a project.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProjectJoint {
+    /// Multistart starts (each ~1 s).
+    pub starts: usize,
+    /// Seed.
+    pub seed: u64,
+}
+
+/// The paper's FE result for a test beside cutcal's forward prediction (Table 6).
+#[derive(Debug, Clone, Serialize)]
+pub struct FeComparison {
+    /// Row label.
+    pub source: String,
+    /// Cutting force, N/mm.
+    pub fc_n_per_mm: Option<f64>,
+    /// Feed force, N/mm.
+    pub ft_n_per_mm: Option<f64>,
+    /// Chip thickness, mm.
+    pub chip_mm: Option<f64>,
 }
 
 /// One parameter compared with a published value.
@@ -109,6 +142,12 @@ pub struct ProjectReport {
     pub comparisons: Vec<Comparison>,
     /// The JC set used downstream (cards, predictions) and where it comes from.
     pub jc_used: Option<(String, JcReport)>,
+    /// Forward predictions (extended Oxley) of every test with the JC set used.
+    pub predictions: Vec<super::predict::PredictRow>,
+    /// The paper's Table 6 FE results beside our predictions (C38 test 3).
+    pub table6: Vec<FeComparison>,
+    /// Joint Oxley identification, when run.
+    pub joint: Option<cutcal_ident::joint::OxleyIdentification>,
     /// Files written, relative to the output directory.
     pub files: Vec<String>,
 }
@@ -265,6 +304,149 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
         )?;
     }
 
+    // 4. FE cards of every dialect for the JC set used (when the material has an interface).
+    if let (Some((src, jc)), Some(_)) = (&jc_used, &mf.interface) {
+        progress("rendering FE cards");
+        let provenance = cutcal_export::Provenance {
+            cutcal_version: env!("CARGO_PKG_VERSION").to_string(),
+            source_test: format!("{} ({src})", project.name),
+            model_variant: if outcomes.contains_key("enhanced") {
+                "enhanced DPZD".into()
+            } else {
+                "reference JC set".into()
+            },
+        };
+        for f in super::export::render_cards(&mf, jc, &provenance)? {
+            write(&format!("cards/{}", f.name), &f.contents)?;
+        }
+    }
+
+    // 5. Forward predictions of every test, the paper's Table 6 beside them, and the joint fit.
+    let oxley_options = super::predict::oxley_options(mf.oxley.as_ref(), false, None, None, None, None, None)
+        .with_context(|| format!("Oxley options for {}", mf.path.display()))?;
+    let mut predictions = Vec::new();
+    let mut table6 = Vec::new();
+    if let (true, Some((_, jc))) = (project.predict, &jc_used) {
+        progress(&format!("predicting {} tests (extended Oxley)", tests.len()));
+        predictions = super::predict::predict_rows(&mf.material, jc, &tests, &oxley_options, mf.material.room_c);
+        if let Some(t) = &tables {
+            if label == "C38" {
+                let row = |key: &str, src: &str| FeComparison {
+                    source: src.into(),
+                    fc_n_per_mm: table_value(t, key, "fc_n_per_mm"),
+                    ft_n_per_mm: table_value(t, key, "ft_n_per_mm"),
+                    chip_mm: table_value(t, key, "chip_mm"),
+                };
+                table6.push(row("table6.experiment", "experiment (paper Table 6)"));
+                table6.push(row("table6.fe_original", "DEFORM FE, original-DPZD JC (paper Table 6)"));
+                table6.push(row("table6.fe_enhanced", "DEFORM FE, enhanced-DPZD JC (paper Table 6)"));
+                let mut add = |src: String, jc: &JcParams| {
+                    let r =
+                        super::predict::predict_rows(&mf.material, jc, &tests[..], &oxley_options, mf.material.room_c);
+                    if let Some(p) = r.iter().find(|r| r.test == "3").and_then(|r| r.prediction) {
+                        table6.push(FeComparison {
+                            source: src,
+                            fc_n_per_mm: Some(p.cutting_force_n_per_m / 1e3),
+                            ft_n_per_mm: Some(p.feed_force_n_per_m / 1e3),
+                            chip_mm: Some(p.chip_thickness_m * 1e3),
+                        });
+                    }
+                };
+                if let Some(j) = &reference_jc {
+                    add("cutcal extended Oxley, Table 5 JC".into(), j);
+                }
+                for (k, o) in &outcomes {
+                    add(format!("cutcal extended Oxley, cutcal {k}-DPZD JC"), &o.identification.jc);
+                }
+            }
+        }
+        let measured: Vec<_> = predictions
+            .iter()
+            .filter_map(|r| {
+                let p = r.prediction?;
+                Some((r, p))
+            })
+            .collect();
+        let pts = |f: &dyn Fn(&super::predict::PredictRow) -> Option<(f64, f64)>| -> Vec<(f64, f64)> {
+            measured.iter().filter_map(|(r, _)| f(r)).collect()
+        };
+        let fc = pts(&|r| Some((r.fc_measured_n?, r.fc_n?)));
+        let ft = pts(&|r| Some((r.ft_measured_n?, r.ft_n?)));
+        if !fc.is_empty() || !ft.is_empty() {
+            write(
+                "predicted_vs_measured_forces.svg",
+                &crate::report::svg::Plot {
+                    title: format!("{label}: extended Oxley vs measured forces"),
+                    x_label: "measured force [N]".into(),
+                    y_label: "predicted force [N]".into(),
+                    series: vec![
+                        crate::report::svg::Series::markers("Fc", fc),
+                        crate::report::svg::Series::markers("Ft", ft),
+                    ],
+                    diagonal: true,
+                }
+                .render(),
+            )?;
+        }
+        let per_test = |f: &dyn Fn(&super::predict::PredictRow) -> Option<f64>| -> Vec<(f64, f64)> {
+            predictions.iter().enumerate().filter_map(|(i, r)| f(r).map(|v| (i as f64 + 1.0, v))).collect()
+        };
+        write(
+            "predictions_per_test.svg",
+            &crate::report::svg::Plot {
+                title: format!("{label}: predicted forces and chip thickness per test"),
+                x_label: "test (row of the tests file)".into(),
+                y_label: "Fc, Ft [N] ; tc [um]".into(),
+                series: vec![
+                    crate::report::svg::Series::line("Fc predicted", per_test(&|r| r.fc_n)),
+                    crate::report::svg::Series::markers("Fc measured", per_test(&|r| r.fc_measured_n)),
+                    crate::report::svg::Series::line("Ft predicted", per_test(&|r| r.ft_n)),
+                    crate::report::svg::Series::markers("Ft measured", per_test(&|r| r.ft_measured_n)),
+                    crate::report::svg::Series::dashed("tc predicted [um]", per_test(&|r| r.tc_mm.map(|v| v * 1e3))),
+                    crate::report::svg::Series::markers(
+                        "tc measured [um]",
+                        per_test(&|r| r.tc_measured_mm.map(|v| v * 1e3)),
+                    ),
+                ],
+                diagonal: false,
+            }
+            .render(),
+        )?;
+    }
+    let mut joint = None;
+    if let Some(jc_cfg) = &project.joint {
+        let measured = tests.iter().filter(|t| t.measured.cutting_force_n_per_m.is_some()).count();
+        if measured >= 2 {
+            progress(&format!("joint Oxley identification over {measured} tests ({} starts)", jc_cfg.starts));
+            let bounds = super::identify::jc_bounds(&mf)?;
+            let options = cutcal_ident::joint::JointOptions {
+                oxley: oxley_options.clone(),
+                physics: cutcal_model::oxley::Physics::baseline(),
+                work_temperature_c: mf.material.room_c,
+                use_chip_thickness: true,
+            };
+            let constants =
+                cutcal_ident::JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };
+            let id = cutcal_ident::joint::identify_oxley(
+                &mf.material,
+                &tests,
+                &bounds,
+                constants,
+                &options,
+                &cutcal_ident::MultistartOptions::new(jc_cfg.starts, jc_cfg.seed),
+            )
+            .with_context(|| format!("joint Oxley identification from {}", tests_path.display()))?;
+            write(
+                "jc_joint_oxley.toml",
+                &super::identify::jc_toml(
+                    &id.jc,
+                    format!("cutcal {} run {}: joint Oxley fit", env!("CARGO_PKG_VERSION"), project.name),
+                )?,
+            )?;
+            joint = Some(id);
+        }
+    }
+
     let mut report = ProjectReport {
         project: project.name.clone(),
         material: label.clone(),
@@ -273,6 +455,9 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
         identification_skipped: skipped,
         comparisons,
         jc_used: jc_used.as_ref().map(|(s, j)| (s.clone(), JcReport::from(j))),
+        predictions,
+        table6,
+        joint,
         files: Vec::new(),
     };
     files.push("report.md".into());
@@ -349,6 +534,72 @@ pub fn render_markdown(r: &ProjectReport) -> String {
             "{src}: A {:.2} MPa, B {:.2} MPa, n {:.4}, C {:.5}, m {:.4}, eps0 {} 1/s, Tm {} degC, Tr {} degC.\n",
             jc.a_mpa, jc.b_mpa, jc.n, jc.c, jc.m, jc.eps0_per_s, jc.tm_c, jc.tr_c
         );
+    }
+    if !r.predictions.is_empty() {
+        let _ = writeln!(s, "## Forward predictions (extended Oxley, Lalwani 2009) with the JC set used\n");
+        let _ = writeln!(s, "| test | Fc [N] | measured | err | Ft [N] | measured | err | tc [mm] | measured | err | T_AB | T_int | T_int meas. | note |");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+        let c = |v: Option<f64>, d: usize| v.map_or_else(|| "-".to_string(), |x| format!("{x:.d$}"));
+        let pc = |v: Option<f64>| v.map_or_else(|| "-".to_string(), |x| format!("{x:+.1} %"));
+        for p in &r.predictions {
+            let (tab, tint, note) = match (&p.prediction, &p.error) {
+                (Some(q), _) => (
+                    format!("{:.0}", q.temperature_ab_c),
+                    format!("{:.0}", q.temperature_int_c),
+                    if q.flags.delta_poorly_determined { "delta poorly determined".to_string() } else { String::new() },
+                ),
+                (None, Some(e)) => ("-".into(), "-".into(), format!("failed: {e}")),
+                (None, None) => ("-".into(), "-".into(), String::new()),
+            };
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {tab} | {tint} | {} | {note} |",
+                p.test,
+                c(p.fc_n, 1),
+                c(p.fc_measured_n, 1),
+                pc(p.fc_error_pct),
+                c(p.ft_n, 1),
+                c(p.ft_measured_n, 1),
+                pc(p.ft_error_pct),
+                c(p.tc_mm, 3),
+                c(p.tc_measured_mm, 3),
+                pc(p.tc_error_pct),
+                c(p.t_int_measured_c, 0)
+            );
+        }
+        let _ = writeln!(s);
+    }
+    if !r.table6.is_empty() {
+        let _ = writeln!(s, "## C38 test 3: the paper's FE check (Table 6) beside cutcal's forward model\n");
+        let _ = writeln!(s, "| source | Fc [N/mm] | Ft [N/mm] | tc [mm] |");
+        let _ = writeln!(s, "|---|---|---|---|");
+        let c = |v: Option<f64>, d: usize| v.map_or_else(|| "-".to_string(), |x| format!("{x:.d$}"));
+        for t in &r.table6 {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} |",
+                t.source,
+                c(t.fc_n_per_mm, 1),
+                c(t.ft_n_per_mm, 1),
+                c(t.chip_mm, 3)
+            );
+        }
+        let _ = writeln!(s);
+    }
+    if let Some(j) = &r.joint {
+        let _ = writeln!(s, "## Joint identification (extended Oxley over every measured test)\n");
+        let _ = writeln!(
+            s,
+            "A {:.1} MPa, B {:.1} MPa, n {:.3}, C {:.4}, m {:.3}; RMS relative error {:.1} % over {} residuals; at bounds: {}; {}/{} starts at the best minimum.",
+            j.jc.a_pa / 1e6, j.jc.b_pa / 1e6, j.jc.n, j.jc.c, j.jc.m,
+            100.0 * (j.relative_errors.iter().map(|e| e * e).sum::<f64>() / j.relative_errors.len().max(1) as f64).sqrt(),
+            j.relative_errors.len(), if j.statistics.at_bounds.is_empty() { "none".to_string() } else { j.statistics.at_bounds.join(", ") },
+            j.starts_at_best, j.starts
+        );
+        if j.relative_errors.len() < 2 * 5 {
+            let _ = writeln!(s, "\nCaution: {} residuals for 5 parameters: the set fits these tests but is poorly determined (see the correlations in report.json).", j.relative_errors.len());
+        }
+        let _ = writeln!(s);
     }
     let _ = writeln!(s, "## Files\n");
     for f in &r.files {
