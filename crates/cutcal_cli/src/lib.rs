@@ -29,6 +29,8 @@ pub enum Command {
     Identify(commands::identify::IdentifyArgs),
     /// Predict Fc, Ft, tc and temperatures with the extended Oxley model (Lalwani 2009).
     Predict(commands::predict::PredictArgs),
+    /// Locate the mismatch between simulation and recordings and name the missing physics.
+    Diagnose(commands::diagnose::DiagnoseArgs),
     /// Write FE cards (Abaqus, LS-DYNA, DEFORM-style, MatML) from a material and a JC file.
     Export(commands::export::ExportArgs),
     /// Run a whole project: identification, cards, predictions, report.
@@ -42,5 +44,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Run(a) => commands::run::run(&a),
         Command::Export(a) => commands::export::run(&a),
         Command::Predict(a) => commands::predict::run(&a),
+        Command::Diagnose(a) => commands::diagnose::run(&a),
     }
 }

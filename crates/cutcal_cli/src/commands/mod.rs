@@ -1,9 +1,9 @@
 //! One module per `cutcal` subcommand: a clap `Args` struct and a `run` function.
 
-pub mod export;
 pub mod bootstrap;
+pub mod diagnose;
+pub mod export;
 pub mod identify;
 pub mod identify_oxley;
 pub mod predict;
 pub mod run;
-pub mod diagnose;
