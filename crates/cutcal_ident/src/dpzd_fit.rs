@@ -16,6 +16,10 @@ use crate::multistart::{fit_statistics, multistart, FitStatistics, MultistartOpt
 /// Parameter names in the order of the optimisation vector.
 pub const JC_NAMES: [&str; 5] = ["a_mpa", "b_mpa", "n", "c", "m"];
 
+/// Largest upper bounds accepted for `[A_MPa, B_MPa, n, C, m]` (A, B: 100 GPa; n <= 2 and
+/// m <= 10 as in `JcParams::validate`; C <= 10).
+pub const JC_UPPER_LIMITS: [f64; 5] = [1e5, 1e5, 2.0, 10.0, 10.0];
+
 /// Box bounds of the JC identification (A and B in MPa).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct JcBounds {
@@ -42,6 +46,26 @@ impl JcBounds {
         }
         if self.m[0] <= 0.0 {
             return Err(IdentError::InvalidBounds { parameter: "m".into(), low: self.m[0], high: self.m[1] });
+        }
+        // Upper limits of a physical JC set (n and m as in `JcParams::validate`); beyond them the
+        // residuals overflow (found by fuzzing: B <= 4.8e194 MPa gave an infinite objective).
+        for (name, hi, cap) in [
+            ("a_mpa", self.a_mpa[1], JC_UPPER_LIMITS[0]),
+            ("b_mpa", self.b_mpa[1], JC_UPPER_LIMITS[1]),
+            ("n", self.n[1], JC_UPPER_LIMITS[2]),
+            ("c", self.c[1], JC_UPPER_LIMITS[3]),
+            ("m", self.m[1], JC_UPPER_LIMITS[4]),
+        ] {
+            if hi > cap {
+                let low = match name {
+                    "a_mpa" => self.a_mpa[0],
+                    "b_mpa" => self.b_mpa[0],
+                    "n" => self.n[0],
+                    "c" => self.c[0],
+                    _ => self.m[0],
+                };
+                return Err(IdentError::InvalidBounds { parameter: name.into(), low, high: hi });
+            }
         }
         Bounds::new(
             JC_NAMES.iter().map(|s| (*s).to_string()).collect(),
@@ -246,6 +270,12 @@ pub fn identify(
 ) -> Result<JcIdentification, IdentError> {
     let b = bounds.to_bounds()?;
     let report = multistart(problem, &b, options)?;
+    if !report.best.ssr.is_finite() {
+        return Err(IdentError::NonFinite {
+            what: "objective".into(),
+            params: report.best.params.iter().copied().collect(),
+        });
+    }
     let stats = fit_statistics(problem, &b, &report.best.params, &report.best.residuals)?;
     let jc = problem.constants.params(&report.best.params);
     Ok(JcIdentification {

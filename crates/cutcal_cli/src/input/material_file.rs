@@ -408,6 +408,17 @@ pub fn parse_material(path: &Path, text: &str) -> Result<MaterialFile, InputErro
                     "bounds must be finite and non-negative",
                 ));
             }
+            let cap = cutcal_ident::dpzd_fit::JC_UPPER_LIMITS
+                [["a_mpa", "b_mpa", "n", "c", "m"].iter().position(|k| *k == name).unwrap_or(0)];
+            if hi > cap {
+                return Err(InputError::new(
+                    path,
+                    line,
+                    &field,
+                    format!("[{lo}, {hi}]"),
+                    format!("the upper bound must be at most {cap} (is the unit right?)"),
+                ));
+            }
             if lo > hi {
                 return Err(InputError::new(
                     path,
