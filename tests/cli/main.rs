@@ -4,6 +4,7 @@ mod bootstrap;
 mod catalogue;
 mod determinism;
 mod identify;
+mod predict;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
