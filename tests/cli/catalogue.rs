@@ -26,8 +26,13 @@ fn args(name: &str) -> Vec<String> {
         ("fixtures/materials/c38.toml".to_string(), bad)
     } else if name.starts_with("material_") {
         (bad, "fixtures/tests/c38.csv".to_string())
+    } else if name.starts_with("jc_") {
+        // A JC file goes through the forward model with the good C38 inputs.
+        return ["predict", "--material", "fixtures/materials/c38.toml", "--jc", &bad, "--tests", "fixtures/tests/c38.csv"]
+            .map(String::from)
+            .to_vec();
     } else {
-        panic!("fixtures/bad/{name}: name it tests_*.csv or material_*.toml so the catalogue knows how to run it")
+        panic!("fixtures/bad/{name}: name it tests_*.csv, material_*.toml or jc_*.toml so the catalogue knows how to run it")
     };
     ["identify", "--material", &material, "--tests", &tests, "--starts", "4"].map(String::from).to_vec()
 }
