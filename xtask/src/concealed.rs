@@ -11,7 +11,7 @@
 //! |---|---|---|
 //! | edge_ploughing | Waldorf et al. 1998 slip-line prow forces, scaled by the local k_AB | constant edge forces p_c, p_t |
 //! | flank_wear | VB = VB0 + growth x cut length, Smithey et al. 2000 quadratic stress tail, sigma0 ~ k_AB | forces linear in test order |
-//! | tool_chip_friction | Zorev stick-slip integral with sliding-speed dependent mu (Rech et al. 2009) | one factor m_f |
+//! | tool_chip_friction | Zorev stick-slip integral with sliding-speed dependent mu (Rech et al. 2009) | smooth power law m_f0 (V/V_ref)^-p_v, no sticking zone (note M5) |
 //! | thermal_softening | speed-dependent coupling strength | constant k_T |
 //! | heat_partition | partition scale varying with the thermal number | constant k_beta |
 //! | size_effect | Kienzle power law (h/h_ref)^-m_s on flow stress | Nix-Gao sqrt(1 + l/h) |

@@ -527,8 +527,14 @@ fn screen_and_refit(
     let noise = pr.cfg.noise;
     let n = pr.n();
     let (_, lo, hi, _) = fit::layout(pr.sim, current_spec);
-    let cols: Vec<usize> = (0..current.k).collect();
-    let steps: Vec<f64> = (0..current.k).map(|i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
+    // Absorbability is judged along the directions the current parameters can still move in both
+    // ways: a parameter held at a bound (e.g. JC n at its floor) cannot absorb a signature that needs
+    // it beyond the bound, so its column is left out of the projection (the refit, with the
+    // parameter free inside its box, decides). The screen only ranks candidates for the refit; the
+    // acceptance tests are unchanged.
+    let cols: Vec<usize> =
+        (0..current.k).filter(|&i| (current.x[i] - lo[i]).min(hi[i] - current.x[i]) > 1e-6 * (hi[i] - lo[i])).collect();
+    let steps: Vec<f64> = cols.iter().map(|&i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
     // A Jacobian probe outside the model's solvable region leaves the screen unprojected.
     let j = data_jacobian(pr.sim, pr.tests, &pr.obs, current_spec, &noise, &current.x, &cols, &steps)
         .unwrap_or_else(|_| DMatrix::zeros(n, 0));
@@ -602,9 +608,19 @@ fn screen_and_refit(
     }
     screened.sort_by(|a, b| b.u.total_cmp(&a.u));
     // Tiny designs (no held-out validation possible, or few degrees of freedom): refit everything.
+    // So too when the current model misses the data grossly (chi-square p < 1e-3): the score test
+    // is linearised at the current fit, and a large mechanism effect that moves the baseline
+    // parameters far (e.g. friction well below sticking with JC n re-fitted) is then invisible to
+    // it. Refitting more candidates changes no threshold: the Bonferroni level already counts every
+    // testable mechanism.
     let tiny = pr.groups.len() < 3 || dof < 6;
-    let chosen: Vec<Screened> =
-        screened.into_iter().enumerate().filter(|(r, s)| tiny || (*r < 4 && s.p < 0.25)).map(|(_, s)| s).collect();
+    let gross = stats::chi2_sf(current.rss, dof.max(1) as f64) < 1e-3;
+    let chosen: Vec<Screened> = screened
+        .into_iter()
+        .enumerate()
+        .filter(|(r, s)| tiny || gross || (*r < 4 && s.p < 0.25))
+        .map(|(_, s)| s)
+        .collect();
     let mut out = Vec::new();
     for s in chosen {
         let (_, lo, hi, start) = fit::layout(pr.sim, &s.spec);

@@ -3,10 +3,11 @@
 //! through a [`Hook`] when the simulator supports it, otherwise on the outputs), the covariates it
 //! needs and its confounders.
 //!
-//! **Source:** design note `discrepancy-discovery.md` Sec 2.2 (mechanisms M1, M3, M4, M6, M7, M9,
-//! M10, M11) and its signature matrix Sec 2.3. Output-level fallbacks of in-model mechanisms use
-//! log-sensitivities of the lite Oxley model at AISI 1045, h = 0.075-0.15 mm, V = 200-240 m/min
-//! (checked against the lite model by `fallback_sensitivities_match_lite_model`).
+//! **Source:** design note `discrepancy-discovery.md` Sec 2.2 (mechanisms M1, M3, M4 with the
+//! speed dependence of M5, M6, M7, M9, M10, M11) and its signature matrix Sec 2.3. Output-level
+//! fallbacks of in-model mechanisms use log-sensitivities of the lite Oxley model at AISI 1045,
+//! h = 0.075-0.15 mm, V = 200-240 m/min (checked against the lite model by
+//! `fallback_sensitivities_match_lite_model`).
 
 use cutcal_model::CuttingTest;
 use serde::{Deserialize, Serialize};
@@ -22,7 +23,7 @@ pub enum MechanismId {
     EdgePloughing,
     /// M3 flank wear land: additive forces growing with wear state.
     FlankWear,
-    /// M4 tool-chip friction below full sticking.
+    /// M4 tool-chip friction below full sticking, falling with cutting speed (M5).
     ToolChipFriction,
     /// M7 thermal softening / thermomechanical coupling stronger than the model's.
     ThermalSoftening,
@@ -141,12 +142,16 @@ pub fn info(id: MechanismId) -> MechanismInfo {
         },
         M::ToolChipFriction => MechanismInfo {
             id,
-            title: "tool-chip friction below full sticking (sliding region)",
-            source: "Zorev 1963; Oxley 1989; design note M4",
-            params: vec![p("m_f", "-", 0.4, 1.0, 1.0, 0.85)],
+            title: "tool-chip friction below full sticking (sliding region), falling with speed",
+            source: "Zorev 1963; Oxley 1989; Rech, Claudin & D'Eramo 2009; design note M4, M5",
+            // m_f = m_f0 (V / V_ref)^(-p_v), V_ref the geometric mean test speed (note M5). The
+            // lower bound 0.2 of m_f0 admits the mean Zorev interface shear of note M4 with a short
+            // sticking zone (a sticking fraction 0.2 and mu = 0.25 under its sigma_n = sigma_max
+            // (1 - x/l_c)^2.5 give about 0.28 k_chip); p_v <= 0.5 is note M5's range.
+            params: vec![p("m_f0", "-", 0.2, 1.0, 1.0, 0.85), p("p_v", "-", 0.0, 0.5, 0.0, 0.15)],
             hook: Some(Hook::FrictionFactor),
-            signature: "Fc - (mild), Ft --, chip thinner",
-            covariates: "none",
+            signature: "Fc - (mild), Ft --, chip thinner; Ft/Fc falling with ln V when p_v > 0",
+            covariates: "none for m_f0; p_v needs at least two speeds",
             confounders: &[M::ThermalSoftening, M::ForceCrosstalk],
             separate_by: "measure the chip thickness (mass-based) and the contact length; a channel-gain error does not move the chip",
         },
@@ -215,6 +220,9 @@ pub struct Context {
     pub wear_state: Option<Vec<f64>>,
     /// Built-up-edge onset speed, m/min (chosen on a grid by the fitter).
     pub bue_onset_m_min: f64,
+    /// Reference speed of the speed-dependent friction factor, m/min: the geometric mean of the
+    /// test speeds of the whole dataset (kept in folds, so that m_f0 means the same in each).
+    pub friction_v_ref_m_min: f64,
 }
 
 impl Context {
@@ -231,7 +239,9 @@ impl Context {
         } else {
             None
         };
-        Self { wear_state, bue_onset_m_min: 0.0 }
+        let ln_v: f64 = tests.iter().map(|t| (t.speed_m_per_s * 60.0).ln()).sum::<f64>();
+        let friction_v_ref_m_min = if tests.is_empty() { 1.0 } else { (ln_v / tests.len() as f64).exp() };
+        Self { wear_state, bue_onset_m_min: 0.0, friction_v_ref_m_min }
     }
 
     /// The context restricted to the tests at `indices` (for leave-one-condition-out folds).
@@ -240,6 +250,7 @@ impl Context {
         Self {
             wear_state: self.wear_state.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             bue_onset_m_min: self.bue_onset_m_min,
+            friction_v_ref_m_min: self.friction_v_ref_m_min,
         }
     }
 }
@@ -249,6 +260,13 @@ impl Context {
 pub fn bue_indicator(speed_m_min: f64, onset_m_min: f64) -> f64 {
     // Logistic in ln V with a width of 10 % of the onset speed.
     1.0 / (1.0 + ((speed_m_min / onset_m_min).ln() / 0.1).exp())
+}
+
+/// Speed-dependent interface friction factor `m_f0 (V / V_ref)^(-p_v)` (design note M5, the power
+/// law in V; Rech, Claudin & D'Eramo 2009 measured friction falling with sliding speed).
+#[must_use]
+pub fn friction_factor(m_f0: f64, p_v: f64, speed_m_min: f64, v_ref_m_min: f64) -> f64 {
+    m_f0 * (speed_m_min / v_ref_m_min).powf(-p_v)
 }
 
 /// Output log-sensitivities `(d ln Fc, d ln Ft, d ln t2)` per unit parameter change used when the
@@ -278,7 +296,9 @@ pub fn set_hooks(
     }
     for (t, h) in tests.iter().zip(hooks.iter_mut()) {
         match id {
-            MechanismId::ToolChipFriction => h.friction_factor *= phi[0],
+            MechanismId::ToolChipFriction => {
+                h.friction_factor *= friction_factor(phi[0], phi[1], t.speed_m_per_s * 60.0, ctx.friction_v_ref_m_min)
+            }
             MechanismId::ThermalSoftening => h.extra_softening += phi[0],
             MechanismId::HeatPartition => h.heat_partition_scale *= phi[0],
             MechanismId::SizeEffect => h.flow_multiplier *= size_factor(phi[0], t),
@@ -313,7 +333,9 @@ pub fn correct(
         let s = fallback(hook);
         for (i, (t, p)) in tests.iter().zip(preds.iter_mut()).enumerate() {
             let x = match id {
-                MechanismId::ToolChipFriction => phi[0] - 1.0,
+                MechanismId::ToolChipFriction => {
+                    friction_factor(phi[0], phi[1], t.speed_m_per_s * 60.0, ctx.friction_v_ref_m_min) - 1.0
+                }
                 MechanismId::ThermalSoftening => {
                     // Scale with the shear-zone temperature rise when known (reference rise 345 K,
                     // the lite model's at the sensitivity condition).
@@ -431,6 +453,39 @@ mod tests {
             assert_eq!(info(m).id, m);
         }
         assert_eq!(MechanismId::parse("gain_error"), None);
+    }
+
+    #[test]
+    fn friction_factor_falls_with_speed_about_the_reference() {
+        // m_f0 (V/V_ref)^(-p_v): equal to m_f0 at V_ref, 2^(-0.2) = 0.8706 of it at twice V_ref,
+        // constant when p_v = 0; the context's V_ref is the geometric mean speed (80, 320 -> 160).
+        assert!((friction_factor(0.7, 0.2, 150.0, 150.0) - 0.7).abs() < 1e-12);
+        assert!((friction_factor(0.7, 0.2, 300.0, 150.0) - 0.7 * 0.870_550_563_3).abs() < 1e-9);
+        assert!((friction_factor(0.7, 0.0, 37.0, 150.0) - 0.7).abs() < 1e-12);
+        let tests = [
+            CuttingTest::new("a", 80.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap(),
+            CuttingTest::new("b", 320.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap(),
+        ];
+        assert!((Context::of(&tests).friction_v_ref_m_min - 160.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn speed_exponent_moves_the_lite_model_in_the_m5_direction() {
+        // Note Sec 2.3, M5: with p_v > 0 the feed force falls with ln V relative to constant m_f.
+        let (jc, k) = aisi1045();
+        let tests = [
+            CuttingTest::new("lo", 100.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap(),
+            CuttingTest::new("hi", 400.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap(),
+        ];
+        let ctx = Context::of(&tests);
+        let sim = crate::simulator::LiteSimulator::with_constants(jc, k, &crate::simulator::JcBox::wide(), true);
+        let ratio = |p_v: f64| {
+            let mut hooks = [Hooks::NEUTRAL; 2];
+            set_hooks(MechanismId::ToolChipFriction, &[0.7, p_v], &tests, &ctx, &sim, &mut hooks);
+            let r: Vec<f64> = tests.iter().zip(&hooks).map(|(t, h)| solve(t, &jc, &k, h).unwrap().ft_n_per_m).collect();
+            r[1] / r[0]
+        };
+        assert!(ratio(0.3) < 0.97 * ratio(0.0), "{} vs {}", ratio(0.3), ratio(0.0));
     }
 
     #[test]
