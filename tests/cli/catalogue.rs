@@ -28,9 +28,17 @@ fn args(name: &str) -> Vec<String> {
         (bad, "fixtures/tests/c38.csv".to_string())
     } else if name.starts_with("jc_") {
         // A JC file goes through the forward model with the good C38 inputs.
-        return ["predict", "--material", "fixtures/materials/c38.toml", "--jc", &bad, "--tests", "fixtures/tests/c38.csv"]
-            .map(String::from)
-            .to_vec();
+        return [
+            "predict",
+            "--material",
+            "fixtures/materials/c38.toml",
+            "--jc",
+            &bad,
+            "--tests",
+            "fixtures/tests/c38.csv",
+        ]
+        .map(String::from)
+        .to_vec();
     } else {
         panic!("fixtures/bad/{name}: name it tests_*.csv, material_*.toml or jc_*.toml so the catalogue knows how to run it")
     };

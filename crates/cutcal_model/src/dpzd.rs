@@ -94,8 +94,9 @@ impl ShearPlaneState {
     ///
     /// Returns an error if a measurement is missing or gives no admissible state.
     pub fn from_test(test: &CuttingTest) -> Result<Self, ModelError> {
-        let missing =
-            |what: &str| ModelError::Inconsistent(format!("{what} is not measured (the DPZD model needs Fc, Ft and tc)"));
+        let missing = |what: &str| {
+            ModelError::Inconsistent(format!("{what} is not measured (the DPZD model needs Fc, Ft and tc)"))
+        };
         let fc = test.measured.cutting_force_n_per_m.ok_or_else(|| missing("cutting force"))?;
         let ft = test.measured.feed_force_n_per_m.ok_or_else(|| missing("feed force"))?;
         let tc = test.measured.chip_thickness_m.ok_or_else(|| missing("chip thickness"))?;
