@@ -9,26 +9,10 @@ use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};
 use cutcal_ident::bootstrap::{bootstrap, BootstrapOptions, Measurement, RelativeUncertainty};
 use cutcal_ident::{identify_from_zone, IdentError, JcBounds, JcConstants, MultistartOptions};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState};
-use cutcal_model::{CuttingTest, JcParams, Material, TempPolynomial, ThermalProperties};
+use cutcal_model::{CuttingTest, JcParams, Material};
 
 fn c38() -> Material {
-    // Table 3 (paper), C38, SI.
-    let rho = TempPolynomial::new(vec![7.866, -8.465e-4, 1.091e-6, -5.961e-10]).unwrap().scaled(1e3);
-    let cp = TempPolynomial::new(vec![0.2306, 0.0025, -3.653e-6, 1.707e-9]).unwrap().scaled(1e3);
-    Material {
-        name: "C38".into(),
-        thermal: ThermalProperties {
-            rho_cp: rho.product(&cp),
-            density: rho,
-            conductivity: TempPolynomial::new(vec![45.1088, -0.0321, 1.645e-5]).unwrap(),
-            valid_from_c: 20.0,
-            valid_to_c: 1200.0,
-        },
-        yield_strength: Some(TempPolynomial::new(vec![773.007, -1.630, 0.0038, -3.001e-6]).unwrap().scaled(1e6)),
-        melting_c: 1460.0,
-        room_c: 20.0,
-        elastic: None,
-    }
+    cutcal_model::reference::c38_table3()
 }
 
 fn bench(c: &mut Criterion) {

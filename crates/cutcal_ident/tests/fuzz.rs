@@ -7,7 +7,7 @@
 
 use cutcal_ident::{identify_from_zone, JcBounds, JcConstants, MultistartOptions};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState};
-use cutcal_model::{Material, TempPolynomial, ThermalProperties};
+use cutcal_model::Material;
 use proptest::prelude::*;
 
 fn config(smoke: u32) -> ProptestConfig {
@@ -17,24 +17,7 @@ fn config(smoke: u32) -> ProptestConfig {
 
 /// C38 of the paper's Table 3, in SI.
 fn c38() -> Material {
-    let rho = TempPolynomial::new(vec![7.866, -8.465e-4, 1.091e-6, -5.961e-10]).expect("Table 3").scaled(1e3);
-    let cp = TempPolynomial::new(vec![0.2306, 0.0025, -3.653e-6, 1.707e-9]).expect("Table 3").scaled(1e3);
-    Material {
-        name: "C38".into(),
-        thermal: ThermalProperties {
-            rho_cp: rho.product(&cp),
-            density: rho,
-            conductivity: TempPolynomial::new(vec![45.1088, -0.0321, 1.645e-5]).expect("Table 3"),
-            valid_from_c: 20.0,
-            valid_to_c: 1200.0,
-        },
-        yield_strength: Some(
-            TempPolynomial::new(vec![773.007, -1.630, 0.0038, -3.001e-6]).expect("Table 3").scaled(1e6),
-        ),
-        melting_c: 1460.0,
-        room_c: 20.0,
-        elastic: None,
-    }
+    cutcal_model::reference::c38_table3()
 }
 
 /// A bound pair: usually sensible, sometimes inverted, negative, NaN or infinite.

@@ -25,6 +25,7 @@ pub mod kinematics;
 pub mod material;
 pub mod oxley;
 pub mod poly;
+pub mod reference;
 
 pub use cutting_test::{CuttingTest, Measured};
 pub use error::ModelError;

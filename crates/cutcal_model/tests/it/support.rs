@@ -6,21 +6,7 @@ use cutcal_model::{JcParams, Material, TempPolynomial, ThermalProperties};
 /// K = 52.61 - 0.0281 T W/(m K), T in degC; Tm 1460 degC, room 25 degC
 /// (as in fixtures/materials/aisi1045.toml).
 pub fn aisi1045() -> Material {
-    let rho = TempPolynomial::constant(7862.0);
-    Material {
-        name: "AISI1045".into(),
-        thermal: ThermalProperties {
-            rho_cp: rho.product(&TempPolynomial::new(vec![420.0, 0.504]).unwrap()),
-            density: rho,
-            conductivity: TempPolynomial::new(vec![52.61, -0.0281]).unwrap(),
-            valid_from_c: 0.0,
-            valid_to_c: 1400.0,
-        },
-        yield_strength: None,
-        melting_c: 1460.0,
-        room_c: 25.0,
-        elastic: None,
-    }
+    cutcal_model::reference::aisi1045_lalwani2009()
 }
 
 /// Jaspers & Dautzenberg 2002 JC set for AISI 1045 (fixtures/jc/aisi1045_jaspers2002.toml).
