@@ -94,41 +94,8 @@ pub struct IdentifyArgs {
     pub uncertainty: super::bootstrap::BootstrapArgs,
 }
 
-/// JC parameters in report units.
-#[derive(Debug, Clone, Serialize)]
-pub struct JcReport {
-    /// A, MPa.
-    pub a_mpa: f64,
-    /// B, MPa.
-    pub b_mpa: f64,
-    /// n.
-    pub n: f64,
-    /// C.
-    pub c: f64,
-    /// m.
-    pub m: f64,
-    /// Reference strain rate, 1/s.
-    pub eps0_per_s: f64,
-    /// Tm, degC.
-    pub tm_c: f64,
-    /// Tr, degC.
-    pub tr_c: f64,
-}
-
-impl From<&cutcal_model::JcParams> for JcReport {
-    fn from(jc: &cutcal_model::JcParams) -> Self {
-        Self {
-            a_mpa: jc.a_pa / 1e6,
-            b_mpa: jc.b_pa / 1e6,
-            n: jc.n,
-            c: jc.c,
-            m: jc.m,
-            eps0_per_s: jc.eps0_per_s,
-            tm_c: jc.tm_c,
-            tr_c: jc.tr_c,
-        }
-    }
-}
+/// JC parameters in report units: the JC file form (MPa, degC), without a source in reports.
+pub type JcReport = crate::input::jc_file::JcFile;
 
 /// The machine-readable result of a DPZD identification.
 #[derive(Debug, Clone, Serialize)]
@@ -271,7 +238,7 @@ pub fn identify_dpzd(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSetti
         t_ef_c: zone.t_ef_c,
         tau0_ef_mpa: zone.tau0_ef_pa / 1e6,
         iterations: zone.iterations,
-        jc: JcReport::from(&id.jc),
+        jc: JcReport::from_params(&id.jc, None),
         objective_mpa: id.objective_mpa,
         rms_mpa: id.rms_mpa,
         at_bounds: s.at_bounds.clone(),

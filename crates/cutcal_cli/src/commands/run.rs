@@ -454,7 +454,7 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
         identification: outcomes.iter().map(|(k, o)| (k.clone(), o.report.clone())).collect(),
         identification_skipped: skipped,
         comparisons,
-        jc_used: jc_used.as_ref().map(|(s, j)| (s.clone(), JcReport::from(j))),
+        jc_used: jc_used.as_ref().map(|(s, j)| (s.clone(), JcReport::from_params(j, None))),
         predictions,
         table6,
         joint,

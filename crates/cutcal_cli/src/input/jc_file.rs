@@ -12,7 +12,7 @@ use super::{parse_toml, read_text, toml_key_line, InputError};
 #[serde(deny_unknown_fields)]
 pub struct JcFile {
     /// Where the numbers come from.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub source: Option<String>,
     /// A, MPa.
     pub a_mpa: f64,
