@@ -11,7 +11,7 @@ use proptest::prelude::*;
 
 use super::jc_file::parse_jc;
 use super::material_file::parse_material;
-use super::tests_csv::parse_tests;
+use super::tests_csv::{parse_tests, OPTIONAL, REQUIRED};
 use super::{decode_text, InputError};
 
 /// Cases per property: `CUTCAL_FUZZ_CASES` if set, else `smoke`.
@@ -93,33 +93,18 @@ fn cell() -> impl Strategy<Value = String> {
     ]
 }
 
-/// Column names: the real ones (so that rows get parsed) and some impostors.
-const COLUMNS: &[&str] = &[
-    "test",
-    "speed_m_min",
-    "uncut_mm",
-    "width_mm",
-    "rake_deg",
-    "fc_n_per_mm",
-    "ft_n_per_mm",
-    "fc_n",
-    "ft_n",
-    "chip_mm",
-    "edge_radius_um",
-    "flank_wear_mm",
-    "order",
-    "t_int_c",
-    "note",
-    "speed_m_s",
-    "",
-];
+/// Column names: the reader's own (so that rows get parsed) and some impostors.
+fn columns() -> Vec<&'static str> {
+    let mut c: Vec<&'static str> = REQUIRED.iter().chain(OPTIONAL.iter()).copied().collect();
+    c.extend(["speed_m_s", ""]);
+    c
+}
 
 /// A CSV text: mostly the five required columns plus random others, with random rows.
 fn csv_text() -> impl Strategy<Value = String> {
-    let header = (proptest::collection::vec(proptest::sample::select(COLUMNS), 0..6), any::<bool>()).prop_map(
+    let header = (proptest::collection::vec(proptest::sample::select(columns()), 0..6), any::<bool>()).prop_map(
         |(extra, with_required)| {
-            let mut cols: Vec<&str> =
-                if with_required { vec!["test", "speed_m_min", "uncut_mm", "width_mm", "rake_deg"] } else { vec![] };
+            let mut cols: Vec<&str> = if with_required { REQUIRED.to_vec() } else { vec![] };
             cols.extend(extra);
             cols
         },

@@ -16,8 +16,8 @@ use cutcal_model::CuttingTest;
 
 use super::{model_reason, read_text, InputError};
 
-const REQUIRED: [&str; 5] = ["test", "speed_m_min", "uncut_mm", "width_mm", "rake_deg"];
-const OPTIONAL: [&str; 10] = [
+pub(crate) const REQUIRED: [&str; 5] = ["test", "speed_m_min", "uncut_mm", "width_mm", "rake_deg"];
+pub(crate) const OPTIONAL: [&str; 10] = [
     "fc_n_per_mm",
     "ft_n_per_mm",
     "fc_n",
