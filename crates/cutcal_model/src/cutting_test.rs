@@ -15,6 +15,23 @@ pub struct Measured {
     pub chip_thickness_m: Option<f64>,
     /// Tool-chip interface temperature, degC.
     pub interface_temperature_c: Option<f64>,
+    /// Standard deviations of the measurements, where the data state them.
+    pub sd: MeasuredSd,
+}
+
+/// Standard deviations of the measured quantities (same units as [`Measured`]); `None` means the
+/// data do not state one and callers fall back to their documented default noise model.
+///
+/// Filled from the tests CSV columns `fc_sd_n_per_mm`, `ft_sd_n_per_mm`, `chip_sd_mm` (for instance
+/// as written by `cutcal recordings`), or from the spread of repeated tests at one condition.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct MeasuredSd {
+    /// Standard deviation of the cutting force per unit width, N/m.
+    pub cutting_force_n_per_m: Option<f64>,
+    /// Standard deviation of the feed force per unit width, N/m.
+    pub feed_force_n_per_m: Option<f64>,
+    /// Standard deviation of the chip thickness, m.
+    pub chip_thickness_m: Option<f64>,
 }
 
 /// An orthogonal cutting test.
@@ -110,6 +127,23 @@ impl CuttingTest {
             check_range("interface_temperature_c", t, -273.15, 5000.0, "-273.15 < T <= 5000 degC")?;
         }
         self.measured.interface_temperature_c = t_c;
+        Ok(self)
+    }
+
+    /// Sets the standard deviations of the measurements (N/m, N/m, m); each must be finite and > 0.
+    ///
+    /// Returns an error naming the field if a value is not finite or not positive.
+    pub fn with_measurement_sd(mut self, sd: MeasuredSd) -> Result<Self, ModelError> {
+        for (field, v) in [
+            ("cutting_force_sd_n_per_m", sd.cutting_force_n_per_m),
+            ("feed_force_sd_n_per_m", sd.feed_force_n_per_m),
+            ("chip_thickness_sd_m", sd.chip_thickness_m),
+        ] {
+            if let Some(x) = v {
+                check_range(field, x, 0.0, 1e7, "0 < sd <= 1e7 (SI)")?;
+            }
+        }
+        self.measured.sd = sd;
         Ok(self)
     }
 

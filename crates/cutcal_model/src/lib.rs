@@ -27,7 +27,7 @@ pub mod oxley;
 pub mod poly;
 pub mod reference;
 
-pub use cutting_test::{CuttingTest, Measured};
+pub use cutting_test::{CuttingTest, Measured, MeasuredSd};
 pub use error::ModelError;
 pub use jc::JcParams;
 pub use material::{Elastic, Friction, Interface, Material, ThermalProperties};
