@@ -30,7 +30,8 @@ pub struct ExportRequest {
     pub strain_rate_per_s: f64,
     /// Taylor-Quinney fraction.
     pub heat_fraction: f64,
-    /// Source test named in the headers (default: `JC file <name>` as the CLI writes).
+    /// Source test named in the headers (default: `JC file <name>` as the CLI writes, or
+    /// `JC set given in Python` for a set not read from a file).
     pub source_test: Option<String>,
     /// Model variant named in the headers.
     pub model_variant: String,
@@ -89,10 +90,14 @@ pub fn render_cards(mf: &MaterialFile, jc: &NamedJc, req: &ExportRequest) -> Fac
         inelastic_heat_fraction: req.heat_fraction,
         ..standard_options(wp)
     };
-    let jc_name = jc.file_name.clone().unwrap_or_default();
+    // The CLI's default names the JC file; a set built or identified in Python has none.
+    let default_source = match &jc.file_name {
+        Some(name) => format!("JC file {name}"),
+        None => "JC set given in Python".to_string(),
+    };
     let provenance = Provenance {
         cutcal_version: env!("CARGO_PKG_VERSION").to_string(),
-        source_test: req.source_test.clone().unwrap_or_else(|| format!("JC file {jc_name}")),
+        source_test: req.source_test.clone().unwrap_or(default_source),
         model_variant: req.model_variant.clone(),
     };
     let input = ExportInput {
