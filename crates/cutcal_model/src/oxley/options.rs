@@ -6,6 +6,8 @@ use serde::{Deserialize, Serialize};
 use crate::cutting_test::CuttingTest;
 use crate::error::{check_range, ModelError};
 
+use super::edge::{EdgePloughing, FlankWear};
+
 /// The conditions of one orthogonal cut, validated on construction.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct CuttingConditions {
@@ -202,24 +204,15 @@ pub struct EdgeForce {
     pub feed_n_per_m: f64,
 }
 
-/// Flank-wear land contact, mean-stress form (discrepancy note M3; after Smithey, Kapoor & DeVor 2000):
-/// `dFt = VB sigma_w`, `dFc = VB min(mu_w sigma_w, k_AB)` per unit width, `sigma_w = c_sigma k_AB`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct FlankWear {
-    /// Flank wear land VB, m.
-    pub land_m: f64,
-    /// Mean normal stress on the land over the primary-zone shear flow stress, c_sigma (about 1-3).
-    pub normal_stress_factor: f64,
-    /// Friction coefficient on the land, mu_w.
-    pub friction_coefficient: f64,
-}
-
 /// Extra physics beyond Oxley's theory. Every hook has its own parameters; [`Physics::baseline`]
 /// switches all of them off (the plain extended Oxley model). No `Default`: the choice is explicit.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Physics {
-    /// Additive edge (ploughing) forces (M1), or `None`.
+    /// Fixed additive edge forces (M1, the diagnosis's fitted form), or `None`.
     pub edge_force: Option<EdgeForce>,
+    /// Edge ploughing by an edge of radius r_e (Waldorf, DeVor & Kapoor 1998), scaled by k_AB and
+    /// phi of the solution, or `None` (sharp edge).
+    pub edge_ploughing: Option<EdgePloughing>,
     /// Interface friction factor m_f: the tool-chip shear stress is `m_f k_chip` (M4);
     /// 1 = Oxley's full sticking.
     pub interface_friction_factor: f64,
@@ -228,7 +221,7 @@ pub struct Physics {
     /// Thermal-softening coupling kappa_T (M7): the flow stress is evaluated at
     /// `T_w + kappa_T (T - T_w)`; 1 = coupled (Oxley), 0 = thermal softening off.
     pub thermal_softening_scale: f64,
-    /// Flank-wear land forces (M3), or `None`.
+    /// Flank-wear land forces (M3; Smithey, Kapoor & DeVor 2001), scaled by k_AB, or `None`.
     pub flank_wear: Option<FlankWear>,
 }
 
@@ -238,11 +231,30 @@ impl Physics {
     pub fn baseline() -> Self {
         Self {
             edge_force: None,
+            edge_ploughing: None,
             interface_friction_factor: 1.0,
             heat_partition_scale: 1.0,
             thermal_softening_scale: 1.0,
             flank_wear: None,
         }
+    }
+
+    /// Baseline physics plus the tool's stated condition with the nominal published models:
+    /// edge ploughing for `edge_radius_m` ([`EdgePloughing::waldorf1998`]) and the wear land for
+    /// `flank_wear_m` ([`FlankWear::smithey2001`]). `None` (or 0) leaves that term off.
+    ///
+    /// # Example
+    /// ```
+    /// use cutcal_model::oxley::Physics;
+    /// let p = Physics::with_tool(Some(25e-6), None).unwrap();
+    /// assert!(p.edge_ploughing.is_some() && p.flank_wear.is_none());
+    /// assert!(Physics::with_tool(Some(-1e-6), None).is_err());
+    /// ```
+    pub fn with_tool(edge_radius_m: Option<f64>, flank_wear_m: Option<f64>) -> Result<Self, ModelError> {
+        let mut p = Self::baseline();
+        p.edge_ploughing = edge_radius_m.map(EdgePloughing::waldorf1998).transpose()?.filter(|e| e.edge_radius_m > 0.0);
+        p.flank_wear = flank_wear_m.map(FlankWear::smithey2001).transpose()?.filter(|f| f.land_m > 0.0);
+        Ok(p)
     }
 
     /// Checks every hook parameter; the error names the field, value and range.
@@ -260,16 +272,11 @@ impl Physics {
         if !(s.is_finite() && (0.0..=1.0).contains(&s)) {
             return Err(ModelError::out_of_range("thermal_softening_scale", s, "0 <= kappa_T <= 1"));
         }
+        if let Some(e) = self.edge_ploughing {
+            e.validate()?;
+        }
         if let Some(f) = self.flank_wear {
-            let vb = f.land_m;
-            if !(vb.is_finite() && (0.0..=2e-3).contains(&vb)) {
-                return Err(ModelError::out_of_range("flank_wear land_m", vb, "0 <= VB <= 2e-3 m"));
-            }
-            check_range("flank_wear normal_stress_factor", f.normal_stress_factor, 0.0, 10.0, "0 < c_sigma <= 10")?;
-            let mu = f.friction_coefficient;
-            if !(mu.is_finite() && (0.0..=2.0).contains(&mu)) {
-                return Err(ModelError::out_of_range("flank_wear friction_coefficient", mu, "0 <= mu_w <= 2"));
-            }
+            f.validate()?;
         }
         Ok(())
     }
