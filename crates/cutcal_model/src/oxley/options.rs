@@ -94,11 +94,16 @@ pub struct OxleyOptions {
     pub delta_flat_tolerance: f64,
     /// Half-width of the probe band around delta*, relative: probes at delta*(1 -/+ band).
     pub delta_flat_band: f64,
+    /// Discrete delta choice: `Some(step)` evaluates delta only at `low, low + step, ..., high` and
+    /// takes the one with the least Fc, without refinement (Lalwani et al. 2009, Sec. 3: delta in
+    /// steps of 0.005). `None`: geometric scan, then Brent's minimiser in ln(delta).
+    pub delta_grid_step: Option<f64>,
 }
 
 impl OxleyOptions {
-    /// The constants and search ranges of Lalwani, Mehta & Jain 2009 (Sec. 3):
-    /// eta = psi = 0.9, C0 in [2, 10], phi in [8, 45] deg, delta in [0.005, 0.2].
+    /// The constants, search ranges and discrete delta choice of Lalwani, Mehta & Jain 2009 (Sec. 3):
+    /// eta = psi = 0.9, C0 in [2, 10], phi in [8, 45] deg, delta in [0.005, 0.2] in steps of 0.005,
+    /// delta the step with the least Fc (the `lalwani` preset).
     ///
     /// These ranges are too narrow for some materials (C38 with Table 5 needs C0 ~ 10.5-13.8);
     /// prefer [`OxleyOptions::wide`] unless reproducing the paper.
@@ -108,6 +113,7 @@ impl OxleyOptions {
             phi_range_rad: [8f64.to_radians(), 45f64.to_radians()],
             c0_range: [2.0, 10.0],
             delta_range: [0.005, 0.2],
+            delta_grid_step: Some(0.005),
             ..Self::wide()
         }
     }
@@ -136,6 +142,7 @@ impl OxleyOptions {
             delta_tolerance: 5e-3,
             delta_flat_tolerance: 0.003,
             delta_flat_band: 0.25,
+            delta_grid_step: None,
         }
     }
 
@@ -180,6 +187,16 @@ impl OxleyOptions {
         check_range("delta_tolerance", self.delta_tolerance, 0.0, 0.1, "0 < tol <= 0.1")?;
         check_range("delta_flat_tolerance", self.delta_flat_tolerance, 0.0, 0.5, "0 < tol <= 0.5")?;
         check_range("delta_flat_band", self.delta_flat_band, 0.0, 0.9, "0 < band <= 0.9")?;
+        if let Some(step) = self.delta_grid_step {
+            let span = self.delta_range[1] - self.delta_range[0];
+            if !(step.is_finite() && step > 0.0 && step <= span && span / step <= 10_000.0) {
+                return Err(ModelError::out_of_range(
+                    "delta_grid_step",
+                    step,
+                    format!("0 < step <= {span} (the delta range) with at most 10000 steps"),
+                ));
+            }
+        }
         for (name, v, lo) in [
             ("max_newton_iterations", self.max_newton_iterations, 1),
             ("max_bracket_iterations", self.max_bracket_iterations, 5),
