@@ -10,3 +10,5 @@ mod oxley_convergence;
 mod oxley_props;
 // Edge ploughing (Waldorf et al. 1998) and wear land (Smithey et al. 2001) inside a prediction.
 mod oxley_edge;
+// Every output against the independent implementation pantale/OxleyPython (fixture with its command).
+mod oxley_reference;
