@@ -134,6 +134,10 @@ pub struct OxleyPrediction {
     pub hook_cutting_force_n_per_m: f64,
     /// Added feed force per unit width from all additive terms, N/m.
     pub hook_feed_force_n_per_m: f64,
+    /// Edge radius of the edge-ploughing term, m (None: sharp edge).
+    pub edge_radius_m: Option<f64>,
+    /// Flank wear land of the wear term, m (None: no wear land).
+    pub flank_wear_m: Option<f64>,
     /// Edge-ploughing cutting force per unit width (Waldorf et al. 1998; 0 for a sharp edge), N/m.
     pub edge_cutting_force_n_per_m: f64,
     /// Edge-ploughing feed force per unit width, N/m.
@@ -280,6 +284,8 @@ pub fn predict_from(
         chip_feed_force_n_per_m: p.feed_force_n_per_m,
         hook_cutting_force_n_per_m: hook_c,
         hook_feed_force_n_per_m: hook_t,
+        edge_radius_m: physics.edge_ploughing.map(|e| e.edge_radius_m),
+        flank_wear_m: physics.flank_wear.map(|f| f.land_m),
         edge_cutting_force_n_per_m: edge_c,
         edge_feed_force_n_per_m: edge_t,
         wear_cutting_force_n_per_m: wear_c,
