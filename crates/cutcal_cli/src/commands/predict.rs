@@ -1,6 +1,12 @@
 //! `cutcal predict`: forces, chip thickness and temperatures of every test of a CSV from a JC set
 //! through the extended Oxley model (Lalwani et al. 2009), against the measurements where given.
 //!
+//! Tool condition: when a test states its edge radius (`edge_radius_um`) or flank wear
+//! (`flank_wear_mm`), the prediction includes edge ploughing (Waldorf, DeVor & Kapoor 1998) and the
+//! wear land (Smithey, Kapoor & DeVor 2001), scaled by the solution's k_AB (see
+//! `cutcal_model::oxley::EdgePloughing`); their contributions are shown per test in the table and
+//! the JSON. `--sharp` turns both off.
+//!
 //! Units of the report: forces in N over the test's width (the CSV may give totals `fc_n`/`ft_n`
 //! with `width_mm`, or `fc_n_per_mm`/`ft_n_per_mm`; both are read as per-unit-width and multiplied
 //! by the width here), chip thickness in mm, temperatures in degC, errors in % of the measurement.
@@ -10,7 +16,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use cutcal_model::oxley::{self, CuttingConditions, OxleyOptions, OxleyPrediction, Physics};
-use cutcal_model::CuttingTest;
+use cutcal_model::{CuttingTest, ModelError};
 use serde::Serialize;
 
 use crate::input::jc_file::load_jc;
@@ -53,6 +59,9 @@ pub struct PredictArgs {
     /// Oxley's psi (default 0.9, or the material's `[oxley] psi`).
     #[arg(long)]
     pub psi: Option<f64>,
+    /// Ignore the tests' edge radius and flank wear (sharp, unworn tool: Oxley's chip forces only).
+    #[arg(long)]
+    pub sharp: bool,
 }
 
 /// One test's prediction against its measurement.
@@ -80,6 +89,18 @@ pub struct PredictRow {
     pub tc_error_pct: Option<f64>,
     /// Measured interface temperature, degC.
     pub t_int_measured_c: Option<f64>,
+    /// Edge radius used, um (None: sharp edge).
+    pub edge_radius_um: Option<f64>,
+    /// Flank wear land used, mm (None: no wear land).
+    pub flank_wear_mm: Option<f64>,
+    /// Edge-ploughing cutting force over the width, N (Waldorf, DeVor & Kapoor 1998).
+    pub edge_fc_n: Option<f64>,
+    /// Edge-ploughing feed force over the width, N.
+    pub edge_ft_n: Option<f64>,
+    /// Wear-land cutting force over the width, N (Smithey, Kapoor & DeVor 2001).
+    pub wear_fc_n: Option<f64>,
+    /// Wear-land feed force over the width, N.
+    pub wear_ft_n: Option<f64>,
     /// The full prediction (SI), if the solve succeeded.
     pub prediction: Option<OxleyPrediction>,
     /// The solver error, if it failed.
@@ -95,6 +116,8 @@ pub struct PredictReport {
     pub options: OxleyOptions,
     /// Work temperature, degC.
     pub work_temperature_c: f64,
+    /// `true` with `--sharp`: stated edge radii and wear lands were ignored.
+    pub sharp: bool,
     /// One row per test.
     pub rows: Vec<PredictRow>,
 }
@@ -172,6 +195,39 @@ fn pct(pred: f64, meas: Option<f64>) -> Option<f64> {
     meas.map(|m| 100.0 * (pred - m) / m)
 }
 
+/// The physics of one test: baseline plus the stated edge radius and flank wear with the published
+/// models ([`Physics::with_tool`]), or the baseline alone when `sharp`.
+pub fn tool_physics(test: &CuttingTest, sharp: bool) -> Result<Physics, ModelError> {
+    if sharp {
+        Ok(Physics::baseline())
+    } else {
+        Physics::with_tool(test.edge_radius_m, test.flank_wear_m)
+    }
+}
+
+impl PredictRow {
+    /// The tool-condition terms in words, e.g. `edge r_e 25 um: Fc +37.2 N (13 %), Ft +93.0 N (40 %)`;
+    /// empty for a sharp, unworn tool.
+    #[must_use]
+    pub fn tool_note(&self) -> String {
+        let mut parts = Vec::new();
+        let share = |part: f64, total: Option<f64>| total.filter(|t| t.abs() > 0.0).map(|t| 100.0 * part / t);
+        let fmt = |what: String, c: Option<f64>, t: Option<f64>| -> Option<String> {
+            let (c, t) = (c?, t?);
+            let pc = share(c, self.fc_n).map_or_else(String::new, |p| format!(" ({p:.0} % of Fc)"));
+            let pt = share(t, self.ft_n).map_or_else(String::new, |p| format!(" ({p:.0} % of Ft)"));
+            Some(format!("{what}: Fc +{c:.1} N{pc}, Ft +{t:.1} N{pt}"))
+        };
+        if let Some(r) = self.edge_radius_um {
+            parts.extend(fmt(format!("edge r_e {r:.0} um (Waldorf 1998)"), self.edge_fc_n, self.edge_ft_n));
+        }
+        if let Some(vb) = self.flank_wear_mm {
+            parts.extend(fmt(format!("wear VB {vb:.3} mm (Smithey 2001)"), self.wear_fc_n, self.wear_ft_n));
+        }
+        parts.join("; ")
+    }
+}
+
 /// A row for one test from its prediction (or error).
 pub fn row(test: &CuttingTest, result: Result<OxleyPrediction, String>) -> PredictRow {
     let w = test.width_m;
@@ -194,6 +250,12 @@ pub fn row(test: &CuttingTest, result: Result<OxleyPrediction, String>) -> Predi
                 tc_measured_mm: tc_meas,
                 tc_error_pct: pct(tc, tc_meas),
                 t_int_measured_c: m.interface_temperature_c,
+                edge_radius_um: p.edge_radius_m.map(|r| r * 1e6),
+                flank_wear_mm: p.flank_wear_m.map(|v| v * 1e3),
+                edge_fc_n: p.edge_radius_m.map(|_| p.edge_cutting_force_n_per_m * w),
+                edge_ft_n: p.edge_radius_m.map(|_| p.edge_feed_force_n_per_m * w),
+                wear_fc_n: p.flank_wear_m.map(|_| p.wear_cutting_force_n_per_m * w),
+                wear_ft_n: p.flank_wear_m.map(|_| p.wear_feed_force_n_per_m * w),
                 prediction: Some(p),
                 error: None,
             }
@@ -210,6 +272,12 @@ pub fn row(test: &CuttingTest, result: Result<OxleyPrediction, String>) -> Predi
             tc_measured_mm: tc_meas,
             tc_error_pct: None,
             t_int_measured_c: m.interface_temperature_c,
+            edge_radius_um: None,
+            flank_wear_mm: None,
+            edge_fc_n: None,
+            edge_ft_n: None,
+            wear_fc_n: None,
+            wear_ft_n: None,
             prediction: None,
             error: Some(e),
         },
@@ -227,6 +295,16 @@ pub fn table(report: &PredictReport) -> String {
         s,
         "extended Oxley (Lalwani 2009) for {}: eta {}, psi {}, work {} degC",
         report.material, report.options.eta, report.options.psi, report.work_temperature_c
+    );
+    let _ = writeln!(
+        s,
+        "{}",
+        if report.sharp {
+            "tool: sharp and unworn (--sharp): stated edge radii and wear lands ignored"
+        } else {
+            "tool: edge ploughing (Waldorf, DeVor & Kapoor 1998) and wear land (Smithey, Kapoor & DeVor 2001) \
+             included where a test states r_e / VB"
+        }
     );
     let _ = writeln!(
         s,
@@ -289,11 +367,16 @@ pub fn table(report: &PredictReport) -> String {
             cell(r.t_int_measured_c, 0),
             flags.join(",")
         );
+        let note = r.tool_note();
+        if !note.is_empty() {
+            let _ = writeln!(s, "{:<6} {note}", "");
+        }
     }
     s
 }
 
-/// Predicts every test with the baseline physics; a failed solve becomes a row with its error.
+/// Predicts every test with the baseline physics plus its stated tool condition
+/// ([`tool_physics`]; none when `sharp`); a failed solve becomes a row with its error.
 #[must_use]
 pub fn predict_rows(
     material: &cutcal_model::Material,
@@ -301,13 +384,13 @@ pub fn predict_rows(
     tests: &[CuttingTest],
     options: &OxleyOptions,
     work_temperature_c: f64,
+    sharp: bool,
 ) -> Vec<PredictRow> {
-    let physics = Physics::baseline();
     tests
         .iter()
         .map(|t| {
             let result = CuttingConditions::from_test(t, work_temperature_c)
-                .and_then(|c| oxley::predict(material, jc, &c, options, &physics))
+                .and_then(|c| oxley::predict(material, jc, &c, options, &tool_physics(t, sharp)?))
                 .map_err(|e| e.to_string());
             row(t, result)
         })
@@ -341,8 +424,14 @@ pub fn predict_report(args: &PredictArgs) -> Result<PredictReport> {
     )
     .with_context(|| format!("Oxley options for {}", args.material.display()))?;
     let work_c = args.work_temperature_c.unwrap_or(mf.material.room_c);
-    let rows = predict_rows(&mf.material, &jc, &tests, &options, work_c);
-    Ok(PredictReport { material: mf.material.name.clone(), options, work_temperature_c: work_c, rows })
+    let rows = predict_rows(&mf.material, &jc, &tests, &options, work_c, args.sharp);
+    Ok(PredictReport {
+        material: mf.material.name.clone(),
+        options,
+        work_temperature_c: work_c,
+        sharp: args.sharp,
+        rows,
+    })
 }
 
 #[cfg(test)]
@@ -368,6 +457,7 @@ mod tests {
             delta_range: None,
             eta: None,
             psi: None,
+            sharp: false,
         };
         let report = predict_report(&args).unwrap();
         let text = table(&report);
@@ -380,6 +470,42 @@ mod tests {
         }
         assert!((report.rows[0].fc_measured_n.unwrap() - 610.0).abs() < 1e-6);
         assert!(text.contains("delta-flat"));
+    }
+
+    #[test]
+    fn stated_edge_radius_is_used_by_default_and_sharp_turns_it_off() {
+        // C38 tests state r_e = 25 um (paper Sec 2); test 3 has measured forces (Table 6).
+        let args = |sharp| PredictArgs {
+            material: fixture("fixtures/materials/c38.toml"),
+            jc: fixture("fixtures/jc/c38_table5.toml"),
+            tests: fixture("fixtures/tests/c38.csv"),
+            json: false,
+            work_temperature_c: None,
+            lalwani_ranges: false,
+            c0_range: None,
+            phi_range_deg: None,
+            delta_range: None,
+            eta: None,
+            psi: None,
+            sharp,
+        };
+        let with = predict_report(&args(false)).unwrap();
+        let sharp = predict_report(&args(true)).unwrap();
+        for (a, b) in with.rows.iter().zip(&sharp.rows) {
+            assert!((a.edge_radius_um.unwrap() - 25.0).abs() < 1e-9);
+            assert_eq!(b.edge_radius_um, None);
+            let (ec, et) = (a.edge_fc_n.unwrap(), a.edge_ft_n.unwrap());
+            // The chip-formation solution is the same; the edge term is the whole difference.
+            assert!((a.fc_n.unwrap() - b.fc_n.unwrap() - ec).abs() < 1e-9 * ec.max(1.0));
+            assert!((a.ft_n.unwrap() - b.ft_n.unwrap() - et).abs() < 1e-9 * et.max(1.0));
+            // Ploughing is thrust-dominant: P_t / P_c = 1 + pi/2 - 2 rho for m = 1 (Waldorf et al. 1998).
+            assert!((et / ec - (1.0 + std::f64::consts::FRAC_PI_2 - 2.0 * 1.9f64.to_radians())).abs() < 1e-9);
+        }
+        let text = table(&with);
+        assert!(text.contains("edge r_e 25 um (Waldorf 1998)"), "{text}");
+        assert!(!table(&sharp).contains("edge r_e"));
+        let json = serde_json::to_string(&with).unwrap();
+        assert!(json.contains("\"edge_fc_n\"") && json.contains("\"edge_feed_force_n_per_m\""));
     }
 
     #[test]

@@ -328,7 +328,7 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
     let mut table6 = Vec::new();
     if let (true, Some((_, jc))) = (project.predict, &jc_used) {
         progress(&format!("predicting {} tests (extended Oxley)", tests.len()));
-        predictions = super::predict::predict_rows(&mf.material, jc, &tests, &oxley_options, mf.material.room_c);
+        predictions = super::predict::predict_rows(&mf.material, jc, &tests, &oxley_options, mf.material.room_c, false);
         if let Some(t) = &tables {
             if label == "C38" {
                 let row = |key: &str, src: &str| FeComparison {
@@ -341,8 +341,14 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
                 table6.push(row("table6.fe_original", "DEFORM FE, original-DPZD JC (paper Table 6)"));
                 table6.push(row("table6.fe_enhanced", "DEFORM FE, enhanced-DPZD JC (paper Table 6)"));
                 let mut add = |src: String, jc: &JcParams| {
-                    let r =
-                        super::predict::predict_rows(&mf.material, jc, &tests[..], &oxley_options, mf.material.room_c);
+                    let r = super::predict::predict_rows(
+                        &mf.material,
+                        jc,
+                        &tests[..],
+                        &oxley_options,
+                        mf.material.room_c,
+                        false,
+                    );
                     if let Some(p) = r.iter().find(|r| r.test == "3").and_then(|r| r.prediction) {
                         table6.push(FeComparison {
                             source: src,
@@ -546,7 +552,18 @@ pub fn render_markdown(r: &ProjectReport) -> String {
                 (Some(q), _) => (
                     format!("{:.0}", q.temperature_ab_c),
                     format!("{:.0}", q.temperature_int_c),
-                    if q.flags.delta_poorly_determined { "delta poorly determined".to_string() } else { String::new() },
+                    [
+                        p.tool_note(),
+                        if q.flags.delta_poorly_determined {
+                            "delta poorly determined".to_string()
+                        } else {
+                            String::new()
+                        },
+                    ]
+                    .into_iter()
+                    .filter(|x| !x.is_empty())
+                    .collect::<Vec<_>>()
+                    .join("; "),
                 ),
                 (None, Some(e)) => ("-".into(), "-".into(), format!("failed: {e}")),
                 (None, None) => ("-".into(), "-".into(), String::new()),

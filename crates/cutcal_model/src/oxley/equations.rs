@@ -295,44 +295,51 @@ impl Context<'_> {
 
     /// The tool-chip interface at `delta` for a given primary zone.
     ///
-    /// Returns an error only if a bracketed temperature solve fails its iteration cap.
+    /// Returns an error only if the bracketed T_C solve fails its iteration cap.
     pub fn interface(&self, p: &PrimaryZone, delta: f64) -> Result<InterfaceZone, ModelError> {
         let c = self.conditions;
         let (alpha, v, t1, tw) = (c.rake_rad, c.speed_m_per_s, c.uncut_chip_thickness_m, c.work_temperature_c);
         let (t2, h) = (p.chip_thickness_m, p.contact_length_m);
         let cos_pa = (p.phi_rad - alpha).cos();
-        // Mean chip temperature rise dT_C = F sin(phi) / (rho Cp t1 w cos(phi - alpha)) and maximum rise
-        // log10(dT_M / dT_C) = 0.06 - 0.195 delta sqrt(R_T t2 / h) + 0.5 log10(R_T t2 / h); interface
-        // temperature T_int = T_w + dT_SZ + psi dT_M (Oxley 1989, Sec. 4.3; Lalwani et al. 2009, Sec. 2),
-        // chip properties at T_int, solved on [T_w, top of the property range].
-        let psi = self.options.psi;
+        // Mean chip temperature T_C = T_w + dT_SZ + dT_C with dT_C = F sin(phi) / (rho Cp t1 w cos(phi - alpha))
+        // and rho Cp at T_C (Oxley 1989, Sec. 4.3: the chip is heated by the whole primary-zone rise
+        // and the mean secondary-zone rise), solved on [T_w + dT_SZ, top of the property range].
+        // The function is increasing in T_C (rho Cp grows or is held), so the root is unique.
         let base = tw + p.temperature_rise_sz_c;
-        let rise_m = |t: f64| -> f64 {
-            let (rho_cp, cond) = self.thermal(t);
-            let d_t_c = p.friction_force_n_per_m * p.phi_rad.sin() / (rho_cp * t1 * cos_pa);
-            let rt = rho_cp * v * t1 / cond;
-            let g = rt * t2 / h;
-            d_t_c * 10f64.powf(0.06 - 0.195 * delta * g.sqrt() + 0.5 * g.log10())
+        let d_t_c_at = |t: f64| -> f64 {
+            let (rho_cp, _) = self.thermal(t);
+            p.friction_force_n_per_m * p.phi_rad.sin() / (rho_cp * t1 * cos_pa)
         };
-        let g = |t: f64| -> Result<f64, ModelError> { Ok(t - base - psi * rise_m(t)) };
+        let g = |t: f64| -> Result<f64, ModelError> { Ok(t - base - d_t_c_at(t)) };
         let top = self.material.thermal.valid_to_c;
         let (tol, cap) = (self.options.temperature_tolerance_c, self.options.max_bracket_iterations);
-        let what = "tool-chip interface temperature T_int";
-        let t_int = if top <= base {
-            base + psi * rise_m(top)
+        let what = "mean chip temperature T_C";
+        let t_c = if top <= base {
+            base + d_t_c_at(top)
         } else if let Some(t) = try_hint(g, self.hints.int_c.get(), base, top, tol, cap, what) {
             t
         } else {
             let g_hi = g(top)?;
             if g_hi <= 0.0 {
                 // Above the property range the properties are held constant: closed form.
-                base + psi * rise_m(top)
+                base + d_t_c_at(top)
             } else {
                 let g_lo = g(base)?;
                 brent_root(g, base, top, g_lo, g_hi, tol, cap, what)?
             }
         };
-        self.hints.int_c.set(t_int);
+        self.hints.int_c.set(t_c);
+        // Maximum interface rise log10(dT_M / dT_C) = 0.06 - 0.195 delta sqrt(R_T t2 / h) + 0.5 log10(R_T t2 / h),
+        // with the thermal number R_T = rho Cp V t1 / K of the chip at T_C, and the mean interface
+        // temperature T_int = T_w + dT_SZ + psi dT_M (Oxley 1989, Sec. 4.3; Lalwani et al. 2009, Sec. 2).
+        // Evaluating rho Cp and K at T_C, not at T_int, is what the independent implementation
+        // pantale/OxleyPython does and what reproduces Lalwani's delta and T_int (docs/oxley.md).
+        let (rho_cp, cond) = self.thermal(t_c);
+        let d_t_c = d_t_c_at(t_c);
+        let rt = rho_cp * v * t1 / cond;
+        let gr = rt * t2 / h;
+        let d_t_m = d_t_c * 10f64.powf(0.06 - 0.195 * delta * gr.sqrt() + 0.5 * gr.log10());
+        let t_int = base + self.options.psi * d_t_m;
         // Interface strain rate epsdot_int = V_c / (sqrt(3) delta t2) and strain
         // eps_int = 2 eps_AB + 0.5 h / (sqrt(3) delta t2) (Lalwani et al. 2009, Sec. 2).
         let strain_rate = p.chip_velocity_m_per_s / (SQRT3 * delta * t2);

@@ -12,9 +12,12 @@
 //! - [`CuttingConditions`]: V, t1, w, rake, work temperature (validated).
 //! - [`OxleyOptions`]: eta, psi, search ranges of phi, C0, delta, tolerances and caps; build it with
 //!   [`OxleyOptions::wide`] (recommended) or [`OxleyOptions::lalwani2009`] (the paper's ranges).
-//! - [`Physics`]: extra-physics hooks, all off in [`Physics::baseline`]: additive edge forces (M1),
-//!   flank-wear land (M3), interface friction factor (M4), heat-partition scale (M6), thermal
-//!   softening scale (M7). The hooks act inside the solve (M4, M6, M7) or add to the forces (M1, M3).
+//! - [`Physics`]: extra physics, all off in [`Physics::baseline`]: edge ploughing by an edge radius
+//!   ([`EdgePloughing`], Waldorf, DeVor & Kapoor 1998), the flank-wear land ([`FlankWear`], Smithey,
+//!   Kapoor & DeVor 2001), fixed additive edge forces (M1), interface friction factor (M4),
+//!   heat-partition scale (M6), thermal softening scale (M7). [`Physics::with_tool`] switches on the
+//!   tool-condition models for a stated r_e / VB. The hooks act inside the solve (M4, M6, M7) or add
+//!   to the forces (edge, wear, M1), each reported separately in [`OxleyPrediction`].
 //! - [`OxleyPrediction`]: phi, C0, delta, forces (per unit width and total), chip thickness,
 //!   contact length, T_AB, T_int, strains and strain rates, the residuals reached and flags.
 //!
@@ -67,6 +70,7 @@
 //! assert!((p.cutting_force_n / 576.0 - 1.0).abs() < 0.05);
 //! ```
 
+mod edge;
 mod equations;
 mod options;
 mod roots;
@@ -78,7 +82,8 @@ use crate::error::ModelError;
 use crate::jc::JcParams;
 use crate::material::Material;
 
-pub use options::{CuttingConditions, EdgeForce, FlankWear, OxleyOptions, Physics};
+pub use edge::{waldorf_factors, EdgePloughing, FlankWear};
+pub use options::{CuttingConditions, EdgeForce, OxleyOptions, Physics};
 
 use equations::{Context, TemperatureHints};
 use solve::Solver;
@@ -124,10 +129,23 @@ pub struct OxleyPrediction {
     pub chip_cutting_force_n_per_m: f64,
     /// Chip-formation feed force per unit width, N/m.
     pub chip_feed_force_n_per_m: f64,
-    /// Added cutting force per unit width from the edge and flank-wear hooks, N/m.
+    /// Added cutting force per unit width from all additive terms (fixed edge forces, edge
+    /// ploughing, wear land), N/m.
     pub hook_cutting_force_n_per_m: f64,
-    /// Added feed force per unit width from the edge and flank-wear hooks, N/m.
+    /// Added feed force per unit width from all additive terms, N/m.
     pub hook_feed_force_n_per_m: f64,
+    /// Edge radius of the edge-ploughing term, m (None: sharp edge).
+    pub edge_radius_m: Option<f64>,
+    /// Flank wear land of the wear term, m (None: no wear land).
+    pub flank_wear_m: Option<f64>,
+    /// Edge-ploughing cutting force per unit width (Waldorf et al. 1998; 0 for a sharp edge), N/m.
+    pub edge_cutting_force_n_per_m: f64,
+    /// Edge-ploughing feed force per unit width, N/m.
+    pub edge_feed_force_n_per_m: f64,
+    /// Flank-wear-land cutting force per unit width (Smithey et al. 2001; 0 without wear), N/m.
+    pub wear_cutting_force_n_per_m: f64,
+    /// Flank-wear-land feed force per unit width, N/m.
+    pub wear_feed_force_n_per_m: f64,
     /// Shear force along AB per unit width, F_s = k_AB l_AB, N/m.
     pub shear_force_n_per_m: f64,
     /// Chip thickness t2, m.
@@ -242,18 +260,15 @@ pub fn predict_from(
         });
     }
     let near = |x: f64, r: [f64; 2]| (x - r[0]).abs().min((r[1] - x).abs()) <= 1e-6 * (r[1] - r[0]);
-    // Additive hooks: edge forces (M1) and the flank-wear land (M3), per unit width.
-    let (mut hook_c, mut hook_t) = (0.0, 0.0);
-    if let Some(e) = physics.edge_force {
-        hook_c += e.cutting_n_per_m;
-        hook_t += e.feed_n_per_m;
-    }
-    if let Some(f) = physics.flank_wear {
-        let sigma_w = f.normal_stress_factor * p.shear_flow_stress_pa;
-        let tau_w = (f.friction_coefficient * sigma_w).min(p.shear_flow_stress_pa);
-        hook_c += f.land_m * tau_w;
-        hook_t += f.land_m * sigma_w;
-    }
+    // Additive terms, per unit width, all scaled by the k_AB and phi of this solution:
+    // fixed edge forces (M1 hook), edge ploughing (Waldorf et al. 1998), wear land (Smithey et al. 2001).
+    let (fixed_c, fixed_t) = physics.edge_force.map_or((0.0, 0.0), |e| (e.cutting_n_per_m, e.feed_n_per_m));
+    let (edge_c, edge_t) = physics
+        .edge_ploughing
+        .map_or((0.0, 0.0), |e| e.forces_n_per_m(p.shear_flow_stress_pa, p.phi_rad, conditions.uncut_chip_thickness_m));
+    let (wear_c, wear_t) = physics.flank_wear.map_or((0.0, 0.0), |f| f.forces_n_per_m(p.shear_flow_stress_pa));
+    let hook_c = fixed_c + edge_c + wear_c;
+    let hook_t = fixed_t + edge_t + wear_t;
     let fc = p.cutting_force_n_per_m + hook_c;
     let ft = p.feed_force_n_per_m + hook_t;
     let w = conditions.width_m;
@@ -269,6 +284,12 @@ pub fn predict_from(
         chip_feed_force_n_per_m: p.feed_force_n_per_m,
         hook_cutting_force_n_per_m: hook_c,
         hook_feed_force_n_per_m: hook_t,
+        edge_radius_m: physics.edge_ploughing.map(|e| e.edge_radius_m),
+        flank_wear_m: physics.flank_wear.map(|f| f.land_m),
+        edge_cutting_force_n_per_m: edge_c,
+        edge_feed_force_n_per_m: edge_t,
+        wear_cutting_force_n_per_m: wear_c,
+        wear_feed_force_n_per_m: wear_t,
         shear_force_n_per_m: p.shear_force_n_per_m,
         chip_thickness_m: p.chip_thickness_m,
         contact_length_m: p.contact_length_m,

@@ -6,6 +6,8 @@ use serde::{Deserialize, Serialize};
 use crate::cutting_test::CuttingTest;
 use crate::error::{check_range, ModelError};
 
+use super::edge::{EdgePloughing, FlankWear};
+
 /// The conditions of one orthogonal cut, validated on construction.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct CuttingConditions {
@@ -92,11 +94,16 @@ pub struct OxleyOptions {
     pub delta_flat_tolerance: f64,
     /// Half-width of the probe band around delta*, relative: probes at delta*(1 -/+ band).
     pub delta_flat_band: f64,
+    /// Discrete delta choice: `Some(step)` evaluates delta only at `low, low + step, ..., high` and
+    /// takes the one with the least Fc, without refinement (Lalwani et al. 2009, Sec. 3: delta in
+    /// steps of 0.005). `None`: geometric scan, then Brent's minimiser in ln(delta).
+    pub delta_grid_step: Option<f64>,
 }
 
 impl OxleyOptions {
-    /// The constants and search ranges of Lalwani, Mehta & Jain 2009 (Sec. 3):
-    /// eta = psi = 0.9, C0 in [2, 10], phi in [8, 45] deg, delta in [0.005, 0.2].
+    /// The constants, search ranges and discrete delta choice of Lalwani, Mehta & Jain 2009 (Sec. 3):
+    /// eta = psi = 0.9, C0 in [2, 10], phi in [8, 45] deg, delta in [0.005, 0.2] in steps of 0.005,
+    /// delta the step with the least Fc (the `lalwani` preset).
     ///
     /// These ranges are too narrow for some materials (C38 with Table 5 needs C0 ~ 10.5-13.8);
     /// prefer [`OxleyOptions::wide`] unless reproducing the paper.
@@ -106,6 +113,7 @@ impl OxleyOptions {
             phi_range_rad: [8f64.to_radians(), 45f64.to_radians()],
             c0_range: [2.0, 10.0],
             delta_range: [0.005, 0.2],
+            delta_grid_step: Some(0.005),
             ..Self::wide()
         }
     }
@@ -134,6 +142,7 @@ impl OxleyOptions {
             delta_tolerance: 5e-3,
             delta_flat_tolerance: 0.003,
             delta_flat_band: 0.25,
+            delta_grid_step: None,
         }
     }
 
@@ -178,6 +187,16 @@ impl OxleyOptions {
         check_range("delta_tolerance", self.delta_tolerance, 0.0, 0.1, "0 < tol <= 0.1")?;
         check_range("delta_flat_tolerance", self.delta_flat_tolerance, 0.0, 0.5, "0 < tol <= 0.5")?;
         check_range("delta_flat_band", self.delta_flat_band, 0.0, 0.9, "0 < band <= 0.9")?;
+        if let Some(step) = self.delta_grid_step {
+            let span = self.delta_range[1] - self.delta_range[0];
+            if !(step.is_finite() && step > 0.0 && step <= span && span / step <= 10_000.0) {
+                return Err(ModelError::out_of_range(
+                    "delta_grid_step",
+                    step,
+                    format!("0 < step <= {span} (the delta range) with at most 10000 steps"),
+                ));
+            }
+        }
         for (name, v, lo) in [
             ("max_newton_iterations", self.max_newton_iterations, 1),
             ("max_bracket_iterations", self.max_bracket_iterations, 5),
@@ -202,24 +221,15 @@ pub struct EdgeForce {
     pub feed_n_per_m: f64,
 }
 
-/// Flank-wear land contact, mean-stress form (discrepancy note M3; after Smithey, Kapoor & DeVor 2000):
-/// `dFt = VB sigma_w`, `dFc = VB min(mu_w sigma_w, k_AB)` per unit width, `sigma_w = c_sigma k_AB`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct FlankWear {
-    /// Flank wear land VB, m.
-    pub land_m: f64,
-    /// Mean normal stress on the land over the primary-zone shear flow stress, c_sigma (about 1-3).
-    pub normal_stress_factor: f64,
-    /// Friction coefficient on the land, mu_w.
-    pub friction_coefficient: f64,
-}
-
 /// Extra physics beyond Oxley's theory. Every hook has its own parameters; [`Physics::baseline`]
 /// switches all of them off (the plain extended Oxley model). No `Default`: the choice is explicit.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Physics {
-    /// Additive edge (ploughing) forces (M1), or `None`.
+    /// Fixed additive edge forces (M1, the diagnosis's fitted form), or `None`.
     pub edge_force: Option<EdgeForce>,
+    /// Edge ploughing by an edge of radius r_e (Waldorf, DeVor & Kapoor 1998), scaled by k_AB and
+    /// phi of the solution, or `None` (sharp edge).
+    pub edge_ploughing: Option<EdgePloughing>,
     /// Interface friction factor m_f: the tool-chip shear stress is `m_f k_chip` (M4);
     /// 1 = Oxley's full sticking.
     pub interface_friction_factor: f64,
@@ -228,7 +238,7 @@ pub struct Physics {
     /// Thermal-softening coupling kappa_T (M7): the flow stress is evaluated at
     /// `T_w + kappa_T (T - T_w)`; 1 = coupled (Oxley), 0 = thermal softening off.
     pub thermal_softening_scale: f64,
-    /// Flank-wear land forces (M3), or `None`.
+    /// Flank-wear land forces (M3; Smithey, Kapoor & DeVor 2001), scaled by k_AB, or `None`.
     pub flank_wear: Option<FlankWear>,
 }
 
@@ -238,11 +248,30 @@ impl Physics {
     pub fn baseline() -> Self {
         Self {
             edge_force: None,
+            edge_ploughing: None,
             interface_friction_factor: 1.0,
             heat_partition_scale: 1.0,
             thermal_softening_scale: 1.0,
             flank_wear: None,
         }
+    }
+
+    /// Baseline physics plus the tool's stated condition with the nominal published models:
+    /// edge ploughing for `edge_radius_m` ([`EdgePloughing::waldorf1998`]) and the wear land for
+    /// `flank_wear_m` ([`FlankWear::smithey2001`]). `None` (or 0) leaves that term off.
+    ///
+    /// # Example
+    /// ```
+    /// use cutcal_model::oxley::Physics;
+    /// let p = Physics::with_tool(Some(25e-6), None).unwrap();
+    /// assert!(p.edge_ploughing.is_some() && p.flank_wear.is_none());
+    /// assert!(Physics::with_tool(Some(-1e-6), None).is_err());
+    /// ```
+    pub fn with_tool(edge_radius_m: Option<f64>, flank_wear_m: Option<f64>) -> Result<Self, ModelError> {
+        let mut p = Self::baseline();
+        p.edge_ploughing = edge_radius_m.map(EdgePloughing::waldorf1998).transpose()?.filter(|e| e.edge_radius_m > 0.0);
+        p.flank_wear = flank_wear_m.map(FlankWear::smithey2001).transpose()?.filter(|f| f.land_m > 0.0);
+        Ok(p)
     }
 
     /// Checks every hook parameter; the error names the field, value and range.
@@ -260,16 +289,11 @@ impl Physics {
         if !(s.is_finite() && (0.0..=1.0).contains(&s)) {
             return Err(ModelError::out_of_range("thermal_softening_scale", s, "0 <= kappa_T <= 1"));
         }
+        if let Some(e) = self.edge_ploughing {
+            e.validate()?;
+        }
         if let Some(f) = self.flank_wear {
-            let vb = f.land_m;
-            if !(vb.is_finite() && (0.0..=2e-3).contains(&vb)) {
-                return Err(ModelError::out_of_range("flank_wear land_m", vb, "0 <= VB <= 2e-3 m"));
-            }
-            check_range("flank_wear normal_stress_factor", f.normal_stress_factor, 0.0, 10.0, "0 < c_sigma <= 10")?;
-            let mu = f.friction_coefficient;
-            if !(mu.is_finite() && (0.0..=2.0).contains(&mu)) {
-                return Err(ModelError::out_of_range("flank_wear friction_coefficient", mu, "0 <= mu_w <= 2"));
-            }
+            f.validate()?;
         }
         Ok(())
     }

@@ -252,11 +252,21 @@ impl<'a> Solver<'a> {
     pub fn search_delta(&mut self) -> Result<DeltaSearch, ModelError> {
         let o = self.ctx.options;
         let [dlo, dhi] = o.delta_range;
-        let n = o.delta_scan_points;
+        // Discrete choice (Lalwani et al. 2009): an arithmetic grid, no refinement; else geometric.
+        let deltas: Vec<f64> = match o.delta_grid_step {
+            Some(step) => {
+                let k = ((dhi - dlo) / step + 1e-9).floor() as usize;
+                (0..=k).map(|i| dlo + step * i as f64).collect()
+            }
+            None => {
+                let n = o.delta_scan_points;
+                (0..n).map(|i| dlo * (dhi / dlo).powf(i as f64 / (n - 1) as f64)).collect()
+            }
+        };
+        let n = deltas.len();
         let mut grid: Vec<Option<DeltaPoint>> = Vec::with_capacity(n);
         let mut first_err = None;
-        for i in 0..n {
-            let delta = dlo * (dhi / dlo).powf(i as f64 / (n - 1) as f64);
+        for &delta in &deltas {
             match self.solve_at(delta) {
                 Ok(state) => grid.push(Some(DeltaPoint { delta, state })),
                 Err(e) => {
@@ -281,7 +291,7 @@ impl<'a> Solver<'a> {
         let right = grid.get(ib + 1).copied().flatten();
         let at_bound = left.is_none() || right.is_none();
         let mut best = best;
-        if let (Some(l), Some(r)) = (left, right) {
+        if let (Some(l), Some(r), None) = (left, right, o.delta_grid_step) {
             // Refine in ln(delta); infeasible points stop the refinement (the scan best is kept).
             let mut found = best;
             let res = {

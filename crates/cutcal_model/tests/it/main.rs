@@ -8,3 +8,7 @@ mod oxley_lalwani;
 mod oxley_convergence;
 // Property tests: Fc rises with t1, phi rises with rake, equilibrium recomputed from the outputs.
 mod oxley_props;
+// Edge ploughing (Waldorf et al. 1998) and wear land (Smithey et al. 2001) inside a prediction.
+mod oxley_edge;
+// Every output against the independent implementation pantale/OxleyPython (fixture with its command).
+mod oxley_reference;
