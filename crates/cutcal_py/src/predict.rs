@@ -25,6 +25,8 @@ pub struct PredictRequest {
     pub eta: Option<f64>,
     /// Oxley's psi.
     pub psi: Option<f64>,
+    /// Ignore stated edge radii and flank wear (the CLI's `--sharp`).
+    pub sharp: bool,
 }
 
 /// The Oxley options and work temperature of a request, resolved as the CLI does.
@@ -43,8 +45,14 @@ pub fn predict_tests(
     req: &PredictRequest,
 ) -> FaceResult<PredictReport> {
     let (options, work_c) = resolve(mf, req)?;
-    let rows = predict_rows(&mf.material, jc, tests, &options, work_c);
-    Ok(PredictReport { material: mf.material.name.clone(), options, work_temperature_c: work_c, rows })
+    let rows = predict_rows(&mf.material, jc, tests, &options, work_c, req.sharp);
+    Ok(PredictReport {
+        material: mf.material.name.clone(),
+        options,
+        work_temperature_c: work_c,
+        sharp: req.sharp,
+        rows,
+    })
 }
 
 /// Conditions in the units of the test CSV columns, one entry per cut.
@@ -58,10 +66,17 @@ pub struct Condition {
     pub width_mm: f64,
     /// Rake angle, deg.
     pub rake_deg: f64,
+    /// Cutting-edge radius, um (None: sharp edge).
+    pub edge_radius_um: Option<f64>,
+    /// Flank wear land VB, mm (None: unworn).
+    pub flank_wear_mm: Option<f64>,
 }
 
 /// Predicts each condition independently (in parallel), returning per condition the prediction
 /// or the reason it is not available (an invalid condition or a solve that did not converge).
+///
+/// The tool terms are those of `cutcal predict`: baseline physics plus the stated edge radius and
+/// flank wear (`Physics::with_tool`: Waldorf et al. 1998 ploughing, Smithey et al. 2001 wear land).
 #[must_use]
 pub fn predict_many(
     mf: &MaterialFile,
@@ -70,10 +85,11 @@ pub fn predict_many(
     options: &OxleyOptions,
     work_temperature_c: f64,
 ) -> Vec<Result<OxleyPrediction, String>> {
-    let physics = Physics::baseline();
     conditions
         .par_iter()
         .map(|c| {
+            let physics = Physics::with_tool(c.edge_radius_um.map(|r| r * 1e-6), c.flank_wear_mm.map(|v| v * 1e-3))
+                .map_err(|e| e.to_string())?;
             CuttingConditions::new(
                 c.speed_m_min / 60.0,
                 c.uncut_mm * 1e-3,
@@ -111,28 +127,34 @@ mod tests {
     #[test]
     fn predict_many_equals_the_per_test_prediction_and_reports_bad_rows() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-        let mf = material_from_file(&root.join("fixtures/materials/aisi1045.toml")).unwrap();
-        let jc = jc_from_file(&root.join("fixtures/jc/aisi1045_jaspers2002.toml")).unwrap().jc;
-        let tests = tests_from_file(&root.join("fixtures/tests/aisi1045.csv")).unwrap();
-        let req = PredictRequest::default();
-        let report = predict_tests(&mf, &jc, &tests, &req).unwrap();
-        let (options, work_c) = resolve(&mf, &req).unwrap();
-        let mut conds: Vec<Condition> = tests
-            .iter()
-            .map(|t| Condition {
-                speed_m_min: t.speed_m_per_s * 60.0,
-                uncut_mm: t.uncut_chip_thickness_m * 1e3,
-                width_mm: t.width_m * 1e3,
-                rake_deg: t.rake_rad.to_degrees(),
-            })
-            .collect();
-        conds.push(Condition { speed_m_min: -1.0, uncut_mm: 0.1, width_mm: 1.0, rake_deg: 0.0 });
-        let many = predict_many(&mf, &jc, &conds, &options, work_c);
-        for (row, got) in report.rows.iter().zip(&many) {
-            // Lalwani et al. 2009 predict 576, 433, 1007, 773 N; here only equality with the per-test path.
-            let fc = got.as_ref().unwrap().cutting_force_n;
-            assert!((fc / row.fc_n.unwrap() - 1.0).abs() < 1e-12, "{}: {fc}", row.test);
+        // AISI 1045 (Ivester/Lalwani, sharp) and C38 (paper Table 2, 25 um edge radius stated).
+        for (material, jc, tests) in [("aisi1045", "aisi1045_jaspers2002", "aisi1045"), ("c38", "c38_table5", "c38")] {
+            let mf = material_from_file(&root.join(format!("fixtures/materials/{material}.toml"))).unwrap();
+            let jc = jc_from_file(&root.join(format!("fixtures/jc/{jc}.toml"))).unwrap().jc;
+            let tests = tests_from_file(&root.join(format!("fixtures/tests/{tests}.csv"))).unwrap();
+            let req = PredictRequest::default();
+            let report = predict_tests(&mf, &jc, &tests, &req).unwrap();
+            let (options, work_c) = resolve(&mf, &req).unwrap();
+            let mut conds: Vec<Condition> = tests
+                .iter()
+                .map(|t| Condition {
+                    speed_m_min: t.speed_m_per_s * 60.0,
+                    uncut_mm: t.uncut_chip_thickness_m * 1e3,
+                    width_mm: t.width_m * 1e3,
+                    rake_deg: t.rake_rad.to_degrees(),
+                    edge_radius_um: t.edge_radius_m.map(|r| r * 1e6),
+                    flank_wear_mm: t.flank_wear_m.map(|v| v * 1e3),
+                })
+                .collect();
+            conds.push(Condition { speed_m_min: -1.0, ..conds[0] });
+            let many = predict_many(&mf, &jc, &conds, &options, work_c);
+            for (row, got) in report.rows.iter().zip(&many) {
+                // Only equality with the per-test path of `cutcal predict` is checked here.
+                let (fc, ft) = (got.as_ref().unwrap().cutting_force_n, got.as_ref().unwrap().feed_force_n);
+                assert!((fc / row.fc_n.unwrap() - 1.0).abs() < 1e-9, "{material} {}: {fc}", row.test);
+                assert!((ft / row.ft_n.unwrap() - 1.0).abs() < 1e-9, "{material} {}: {ft}", row.test);
+            }
+            assert!(many.last().unwrap().as_ref().unwrap_err().contains("speed_m_per_s"));
         }
-        assert!(many.last().unwrap().as_ref().unwrap_err().contains("speed_m_per_s"));
     }
 }

@@ -131,23 +131,28 @@ def _as_tests(tests) -> List[CuttingTest]:
 
 
 def predict(material: Material, jc: JcParams, tests, work_temperature_c: Optional[float] = None,
-            lalwani_ranges: bool = False, eta: Optional[float] = None, psi: Optional[float] = None) -> Dict[str, Any]:
+            lalwani_ranges: bool = False, eta: Optional[float] = None, psi: Optional[float] = None,
+            sharp: bool = False) -> Dict[str, Any]:
     """Extended Oxley prediction (Oxley 1989; Lalwani et al. 2009) of every test.
 
     ``tests``: a CuttingTest, a list of them or a DataFrame from :func:`read_tests`. Returns the
     document of ``cutcal predict --json``: ``rows`` with ``fc_n``, ``ft_n`` (over the width), ``tc_mm``,
     the measurements and % errors, and the full SI ``prediction`` (None and ``error`` where the
-    solve found no solution).
+    solve found no solution). A test's stated edge radius and flank wear add the published edge
+    (Waldorf et al. 1998) and wear-land (Smithey et al. 2001) forces unless ``sharp=True``.
     """
     return _predict(material, jc, _as_tests(tests), work_temperature_c=work_temperature_c,
-                    lalwani_ranges=lalwani_ranges, eta=eta, psi=psi)
+                    lalwani_ranges=lalwani_ranges, eta=eta, psi=psi, sharp=sharp)
 
 
 def predict_many(material: Material, jc: JcParams, speed_m_min, uncut_mm, width_mm, rake_deg,
-                 work_temperature_c: Optional[float] = None, lalwani_ranges: bool = False) -> Dict[str, Any]:
+                 edge_radius_um=None, flank_wear_mm=None, work_temperature_c: Optional[float] = None,
+                 lalwani_ranges: bool = False) -> Dict[str, Any]:
     """Vectorised extended Oxley prediction over numpy arrays of conditions.
 
-    The four condition arrays (m/min, mm, mm, deg) broadcast against each other. Conditions run in
+    The condition arrays (m/min, mm, mm, deg, and optionally the edge radius in um and the flank
+    wear land in mm, NaN meaning "not stated") broadcast against each other. The tool terms are
+    those of :func:`predict` (Waldorf et al. 1998 edge, Smithey et al. 2001 wear land). Conditions run in
     parallel in Rust with the GIL released. Returns a dict of ``numpy.ma.MaskedArray`` of the
     broadcast shape, named with units: ``fc_n``, ``ft_n`` (over the width), ``fc_n_per_mm``,
     ``ft_n_per_mm``, ``tc_mm``, ``t_ab_c``, ``t_int_c``, ``phi_deg``, ``c0``, ``delta``; entries
@@ -155,11 +160,16 @@ def predict_many(material: Material, jc: JcParams, speed_m_min, uncut_mm, width_
     the reason per condition, None where converged, in C order) and ``rust_seconds`` (time spent in
     the Rust loop).
     """
-    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=np.float64) for a in (speed_m_min, uncut_mm, width_mm, rake_deg)))
+    given = [speed_m_min, uncut_mm, width_mm, rake_deg]
+    tool = [edge_radius_um, flank_wear_mm]
+    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=np.float64) for a in given + [t for t in tool if t is not None]))
     shape = arrays[0].shape
     flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrays]
+    rest = iter(flat[4:])
+    tool_flat = [None if t is None else next(rest) for t in tool]
     values, converged, errors, seconds = _cutcal._predict_many(
-        material, jc, *flat, work_temperature_c=work_temperature_c, lalwani_ranges=lalwani_ranges)
+        material, jc, *flat[:4], edge_radius_um=tool_flat[0], flank_wear_mm=tool_flat[1],
+        work_temperature_c=work_temperature_c, lalwani_ranges=lalwani_ranges)
     mask = ~converged.reshape(shape)
     out: Dict[str, Any] = {k: np.ma.masked_array(v.reshape(shape), mask=mask) for k, v in values.items()}
     out["converged"] = converged.reshape(shape)

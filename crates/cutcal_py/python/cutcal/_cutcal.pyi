@@ -83,10 +83,12 @@ def identify(material: Material, test: CuttingTest, model: str = "enhanced", sta
              bootstrap_starts: int = 4, field_points: int = 201) -> IdentifyResult:
     """JC from one test: DPZD zone (paper Sec 3, Eqs 1-12; Sec 3.5 fixed point), Eq 15 fit."""
 def predict(material: Material, jc: JcParams, tests: List[CuttingTest], work_temperature_c: Optional[float] = None,
-            lalwani_ranges: bool = False, eta: Optional[float] = None, psi: Optional[float] = None) -> Dict[str, Any]: ...
+            lalwani_ranges: bool = False, eta: Optional[float] = None, psi: Optional[float] = None,
+            sharp: bool = False) -> Dict[str, Any]: ...
 def _predict_many(material: Material, jc: JcParams, speed_m_min: npt.NDArray[np.float64],
                   uncut_mm: npt.NDArray[np.float64], width_mm: npt.NDArray[np.float64],
-                  rake_deg: npt.NDArray[np.float64], work_temperature_c: Optional[float] = None,
+                  rake_deg: npt.NDArray[np.float64], edge_radius_um: Optional[npt.NDArray[np.float64]] = None,
+                  flank_wear_mm: Optional[npt.NDArray[np.float64]] = None, work_temperature_c: Optional[float] = None,
                   lalwani_ranges: bool = False) -> Tuple[Dict[str, npt.NDArray[np.float64]], npt.NDArray[np.bool_], List[Optional[str]], float]: ...
 def render(material: Material, jc: JcParams, format: str, units: str = "tonne-mm-s",
            t_from_c: Optional[float] = None, t_to_c: Optional[float] = None, t_step_c: float = 100.0,

@@ -75,7 +75,9 @@ fn identify(
 /// predict(material, jc, tests, ...) -> dict: the document of `cutcal predict --json` (extended
 /// Oxley model, Oxley 1989 / Lalwani et al. 2009) for a list of tests.
 #[pyfunction]
-#[pyo3(signature = (material, jc, tests, work_temperature_c = None, lalwani_ranges = false, eta = None, psi = None))]
+#[pyo3(signature = (material, jc, tests, work_temperature_c = None, lalwani_ranges = false, eta = None, psi = None,
+    sharp = false))]
+#[allow(clippy::too_many_arguments)] // the CLI's options, one keyword each
 fn predict<'py>(
     py: Python<'py>,
     material: &PyMaterial,
@@ -85,8 +87,9 @@ fn predict<'py>(
     lalwani_ranges: bool,
     eta: Option<f64>,
     psi: Option<f64>,
+    sharp: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let req = PredictRequest { work_temperature_c, lalwani_ranges, eta, psi };
+    let req = PredictRequest { work_temperature_c, lalwani_ranges, eta, psi, sharp };
     let mf = material.inner.clone();
     let j = jc.inner.jc;
     let tests: Vec<_> = tests.into_iter().map(|t| t.inner).collect();
@@ -102,8 +105,8 @@ fn predict<'py>(
 /// Native part of `cutcal.predict_many`: equal-length 1-D float64 arrays in; a dict of arrays, the
 /// converged mask, the per-condition error (None where converged) and the seconds spent in Rust.
 #[pyfunction]
-#[pyo3(signature = (material, jc, speed_m_min, uncut_mm, width_mm, rake_deg, work_temperature_c = None,
-    lalwani_ranges = false))]
+#[pyo3(signature = (material, jc, speed_m_min, uncut_mm, width_mm, rake_deg, edge_radius_um = None,
+    flank_wear_mm = None, work_temperature_c = None, lalwani_ranges = false))]
 #[allow(clippy::too_many_arguments)] // one array per condition column
 #[allow(clippy::type_complexity)] // the tuple is the documented return of the native helper
 fn _predict_many<'py>(
@@ -114,6 +117,8 @@ fn _predict_many<'py>(
     uncut_mm: PyReadonlyArray1<'py, f64>,
     width_mm: PyReadonlyArray1<'py, f64>,
     rake_deg: PyReadonlyArray1<'py, f64>,
+    edge_radius_um: Option<PyReadonlyArray1<'py, f64>>,
+    flank_wear_mm: Option<PyReadonlyArray1<'py, f64>>,
     work_temperature_c: Option<f64>,
     lalwani_ranges: bool,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyArray1<bool>>, Bound<'py, PyList>, f64)> {
@@ -122,12 +127,20 @@ fn _predict_many<'py>(
     if cols.iter().any(|c| c.len() != n) {
         return Err(PyValueError::new_err("speed_m_min, uncut_mm, width_mm and rake_deg must have one length"));
     }
+    let tool = [edge_radius_um.as_ref().map(|a| a.as_array()), flank_wear_mm.as_ref().map(|a| a.as_array())];
+    if tool.iter().flatten().any(|c| c.len() != n) {
+        return Err(PyValueError::new_err("edge_radius_um and flank_wear_mm must have the conditions' length"));
+    }
+    // NaN in a tool array means "not stated" for that condition (a sharp edge, no wear land).
+    let stated = |k: usize, i: usize| tool[k].as_ref().map(|a| a[i]).filter(|v| !v.is_nan());
     let conds: Vec<Condition> = (0..n)
         .map(|i| Condition {
             speed_m_min: cols[0][i],
             uncut_mm: cols[1][i],
             width_mm: cols[2][i],
             rake_deg: cols[3][i],
+            edge_radius_um: stated(0, i),
+            flank_wear_mm: stated(1, i),
         })
         .collect();
     let req = PredictRequest { work_temperature_c, lalwani_ranges, ..Default::default() };

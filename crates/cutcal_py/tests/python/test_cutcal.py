@@ -88,30 +88,47 @@ def test_fields_are_numpy_arrays_with_units_in_their_names_and_match_the_cli_csv
     assert all(v.shape == (7,) for v in few.values())
 
 
-def test_predict_equals_the_cli_json():
-    cli = json.loads(run_cli("predict", "--material", AISI, "--jc", AISI_JC, "--tests", AISI_TESTS, "--json").stdout)
-    m = cutcal.Material.from_toml(AISI)
-    jc = cutcal.JcParams.from_toml(AISI_JC)
-    py = cutcal.predict(m, jc, cutcal.read_tests(AISI_TESTS, as_frame=False))
+PREDICT_CASES = [
+    # AISI 1045 (Ivester et al. 2000 conditions, sharp tool), C38 (paper Table 2, 25 um edge radius).
+    (AISI, AISI_JC, AISI_TESTS),
+    (C38, C38_JC, C38_TESTS),
+]
+
+
+@pytest.mark.parametrize("material,jc,tests", PREDICT_CASES)
+@pytest.mark.parametrize("sharp", [False, True])
+def test_predict_equals_the_cli_json(material, jc, tests, sharp):
+    flags = ["--sharp"] if sharp else []
+    cli = json.loads(run_cli("predict", "--material", material, "--jc", jc, "--tests", tests, "--json", *flags).stdout)
+    m = cutcal.Material.from_toml(material)
+    j = cutcal.JcParams.from_toml(jc)
+    py = cutcal.predict(m, j, cutcal.read_tests(tests, as_frame=False), sharp=sharp)
     assert_close(py, cli)
     # A DataFrame from read_tests gives the same document.
-    frame = cutcal.read_tests(AISI_TESTS)
-    assert_close(cutcal.predict(m, jc, frame), cli)
+    assert_close(cutcal.predict(m, j, cutcal.read_tests(tests), sharp=sharp), cli)
 
 
-def test_predict_many_equals_the_cli_per_condition_and_masks_failures():
-    cli = json.loads(run_cli("predict", "--material", AISI, "--jc", AISI_JC, "--tests", AISI_TESTS, "--json").stdout)
+@pytest.mark.parametrize("material,jc,tests", PREDICT_CASES)
+def test_predict_many_equals_the_cli_per_condition(material, jc, tests):
+    cli = json.loads(run_cli("predict", "--material", material, "--jc", jc, "--tests", tests, "--json").stdout)
+    m = cutcal.Material.from_toml(material)
+    j = cutcal.JcParams.from_toml(jc)
+    rows = [t.to_dict() for t in cutcal.read_tests(tests, as_frame=False)]
+    keys = ("speed_m_min", "uncut_mm", "width_mm", "rake_deg", "edge_radius_um", "flank_wear_mm")
+    cols = {k: np.array([np.nan if t[k] is None else t[k] for t in rows]) for k in keys}
+    out = cutcal.predict_many(m, j, **cols)
+    for i, row in enumerate(cli["rows"]):
+        assert out["converged"][i]
+        assert math.isclose(out["fc_n"][i], row["fc_n"], rel_tol=1e-9)
+        assert math.isclose(out["ft_n"][i], row["ft_n"], rel_tol=1e-9)
+        assert math.isclose(out["tc_mm"][i], row["tc_mm"], rel_tol=1e-9)
+        assert math.isclose(out["t_int_c"][i], row["prediction"]["temperature_int_c"], rel_tol=1e-9)
+
+
+def test_predict_many_broadcasts_and_masks_failures():
     m = cutcal.Material.from_toml(AISI)
     jc = cutcal.JcParams.from_toml(AISI_JC)
-    tests = [t.to_dict() for t in cutcal.read_tests(AISI_TESTS, as_frame=False)]
-    cols = {k: np.array([t[k] for t in tests]) for k in ("speed_m_min", "uncut_mm", "width_mm", "rake_deg")}
-    out = cutcal.predict_many(m, jc, **cols)
-    for i, row in enumerate(cli["rows"]):
-        assert math.isclose(out["fc_n"][i], row["fc_n"], rel_tol=1e-12)
-        assert math.isclose(out["ft_n"][i], row["ft_n"], rel_tol=1e-12)
-        assert math.isclose(out["tc_mm"][i], row["tc_mm"], rel_tol=1e-12)
-        assert math.isclose(out["t_int_c"][i], row["prediction"]["temperature_int_c"], rel_tol=1e-12)
-    # Broadcasting: 3 speeds x 2 rakes; one invalid speed is masked with its reason, never NaN.
+    # 3 speeds x 2 rakes; one invalid speed is masked with its reason, never NaN.
     speeds = np.array([[150.0], [200.0], [-5.0]])
     grid = cutcal.predict_many(m, jc, speeds, 0.15, 1.6, np.array([-7.0, 5.0]))
     assert grid["fc_n"].shape == (3, 2) and grid["converged"].shape == (3, 2)
@@ -119,6 +136,10 @@ def test_predict_many_equals_the_cli_per_condition_and_masks_failures():
     assert grid["fc_n"].mask[2].all() and np.isfinite(grid["fc_n"].data).all()
     assert "speed_m_per_s" in grid["errors"][4]
     assert set(grid) >= {"fc_n", "ft_n", "fc_n_per_mm", "ft_n_per_mm", "tc_mm", "t_ab_c", "t_int_c", "phi_deg"}
+    # A stated edge radius adds force (Waldorf et al. 1998 ploughing): Ft grows.
+    sharp = cutcal.predict_many(m, jc, 200.0, 0.15, 1.6, -7.0)
+    edged = cutcal.predict_many(m, jc, 200.0, 0.15, 1.6, -7.0, edge_radius_um=25.0)
+    assert edged["ft_n"] > sharp["ft_n"]
 
 
 def test_cards_rendered_from_python_are_byte_identical_to_the_cli(tmp_path):
