@@ -132,7 +132,7 @@ impl State {
 impl Context<'_> {
     /// Volumetric heat capacity and conductivity at `temperature_c`, evaluated with the temperature
     /// clamped to the material's stated validity range (the fits are not extrapolated).
-    fn thermal(&self, temperature_c: f64) -> (f64, f64) {
+    pub(crate) fn thermal(&self, temperature_c: f64) -> (f64, f64) {
         let th = &self.material.thermal;
         let t = temperature_c.clamp(th.valid_from_c, th.valid_to_c);
         (th.rho_cp.value(t), th.conductivity.value(t))
