@@ -5,7 +5,7 @@
 
 use crate::error::ModelError;
 
-use super::equations::{Context, State};
+use super::equations::{Context, PrimaryZone, State};
 use super::roots::{brent_min, brent_root};
 
 /// Solver state across the delta search: evaluation count, the last (phi, C0) solution, flags.
@@ -13,6 +13,9 @@ pub(crate) struct Solver<'a> {
     pub ctx: Context<'a>,
     pub evaluations: usize,
     last: Option<(f64, f64)>,
+    /// The primary zone last computed: (phi, C0) repeat across delta (warm starts), and the primary
+    /// zone does not depend on delta, so it is reused exactly when (phi, C0) are bit-identical.
+    primary_cache: Option<PrimaryZone>,
     pub multiple_phi_roots: bool,
 }
 
@@ -34,12 +37,19 @@ pub(crate) struct DeltaSearch {
 
 impl<'a> Solver<'a> {
     pub fn new(ctx: Context<'a>, guess: Option<(f64, f64)>) -> Self {
-        Self { ctx, evaluations: 0, last: guess, multiple_phi_roots: false }
+        Self { ctx, evaluations: 0, last: guess, primary_cache: None, multiple_phi_roots: false }
     }
 
     fn eval(&mut self, phi: f64, c0: f64, delta: f64) -> Result<State, ModelError> {
+        if let Some(p) = self.primary_cache {
+            if p.phi_rad.to_bits() == phi.to_bits() && p.c0.to_bits() == c0.to_bits() {
+                return self.ctx.state_from(p, delta);
+            }
+        }
         self.evaluations += 1;
-        self.ctx.state(phi, c0, delta)
+        let p = self.ctx.primary(phi, c0)?;
+        self.primary_cache = Some(p);
+        self.ctx.state_from(p, delta)
     }
 
     /// Damped Newton on the two normalised residuals from `guess`, with a forward-difference
