@@ -33,6 +33,7 @@ fn bench(c: &mut Criterion) {
         physics: Physics::baseline(),
         work_temperature_c: 25.0,
         use_chip_thickness: true,
+        tool_condition: false,
     };
     let mut g = c.benchmark_group("joint_oxley_aisi1045_4_cases");
     g.sample_size(10);

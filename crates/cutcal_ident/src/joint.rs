@@ -15,9 +15,6 @@
 //! **Source:** the inverse use of Oxley's model follows the OXCUT approach (Oxley 1989, Ch. 7 uses the
 //! forward model for machinability data); the forward model is [`cutcal_model::oxley`].
 
-use std::cell::RefCell;
-use std::collections::HashMap;
-
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
@@ -40,6 +37,9 @@ pub struct JointOptions {
     pub work_temperature_c: f64,
     /// Fit the measured chip thickness where a test has it.
     pub use_chip_thickness: bool,
+    /// Add each test's stated edge radius and flank wear to `physics` (edge ploughing, Waldorf et
+    /// al. 1998; wear land, Smithey et al. 2001; see `cutcal_model::oxley::Physics::with_tool`).
+    pub tool_condition: bool,
 }
 
 /// Which measured quantity a residual compares.
@@ -65,17 +65,15 @@ pub struct Observation {
     pub measured: f64,
 }
 
-/// The least-squares problem: one forward prediction per test per evaluation, warm-started.
+/// The least-squares problem: one cold forward prediction per test per evaluation, so the forward
+/// map is a pure function of the parameters (no warm start, no memoisation, no path dependence).
 pub struct JointOxleyProblem<'a> {
     material: &'a Material,
     conditions: Vec<CuttingConditions>,
+    physics: Vec<Physics>,
     observations: Vec<Observation>,
     constants: JcConstants,
     options: &'a JointOptions,
-    warm: RefCell<Vec<Option<OxleyPrediction>>>,
-    /// Every successful evaluation, keyed by the parameter bits: re-evaluating a point (e.g. the
-    /// multistart's best) returns the solution found there, whatever warm start came since.
-    seen: RefCell<HashMap<[u64; 5], Vec<OxleyPrediction>>>,
 }
 
 impl<'a> JointOxleyProblem<'a> {
@@ -89,9 +87,17 @@ impl<'a> JointOxleyProblem<'a> {
         options: &'a JointOptions,
     ) -> Result<Self, IdentError> {
         let mut conditions = Vec::with_capacity(tests.len());
+        let mut physics = Vec::with_capacity(tests.len());
         let mut observations = Vec::new();
         for (i, t) in tests.iter().enumerate() {
             conditions.push(CuttingConditions::from_test(t, options.work_temperature_c)?);
+            let mut ph = options.physics;
+            if options.tool_condition {
+                let tool = Physics::with_tool(t.edge_radius_m, t.flank_wear_m)?;
+                ph.edge_ploughing = tool.edge_ploughing.or(ph.edge_ploughing);
+                ph.flank_wear = tool.flank_wear.or(ph.flank_wear);
+            }
+            physics.push(ph);
             let m = &t.measured;
             if let Some(v) = m.cutting_force_n_per_m {
                 observations.push(Observation { test: i, quantity: Quantity::CuttingForce, measured: v });
@@ -108,15 +114,7 @@ impl<'a> JointOxleyProblem<'a> {
         if observations.is_empty() {
             return Err(IdentError::InvalidOptions("no test has a measured cutting or feed force".into()));
         }
-        Ok(Self {
-            material,
-            warm: RefCell::new(vec![None; conditions.len()]),
-            seen: RefCell::new(HashMap::new()),
-            conditions,
-            observations,
-            constants,
-            options,
-        })
+        Ok(Self { material, physics, conditions, observations, constants, options })
     }
 
     /// The observations, in residual order.
@@ -125,29 +123,15 @@ impl<'a> JointOxleyProblem<'a> {
         &self.observations
     }
 
-    /// Forward predictions of every test at parameters `p = [A_MPa, B_MPa, n, C, m]`.
+    /// Forward predictions of every test at parameters `p = [A_MPa, B_MPa, n, C, m]`: each a cold
+    /// [`oxley::predict`], so the same `p` gives the same predictions whatever was evaluated before.
     pub fn predictions(&self, p: &DVector<f64>) -> Result<Vec<OxleyPrediction>, IdentError> {
-        let key = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits(), p[3].to_bits(), p[4].to_bits()];
-        if let Some(found) = self.seen.borrow().get(&key) {
-            return Ok(found.clone());
-        }
         let jc = self.constants.params(p);
-        let mut warm = self.warm.borrow_mut();
-        let mut out = Vec::with_capacity(self.conditions.len());
-        for (i, c) in self.conditions.iter().enumerate() {
-            let pred = oxley::predict_from(
-                self.material,
-                &jc,
-                c,
-                &self.options.oxley,
-                &self.options.physics,
-                warm[i].as_ref(),
-            )?;
-            warm[i] = Some(pred);
-            out.push(pred);
-        }
-        self.seen.borrow_mut().insert(key, out.clone());
-        Ok(out)
+        self.conditions
+            .iter()
+            .zip(&self.physics)
+            .map(|(c, ph)| Ok(oxley::predict(self.material, &jc, c, &self.options.oxley, ph)?))
+            .collect()
     }
 }
 
@@ -299,7 +283,28 @@ mod tests {
             physics: Physics::baseline(),
             work_temperature_c: 25.0,
             use_chip_thickness: true,
+            tool_condition: false,
         }
+    }
+
+    #[test]
+    fn forward_map_is_a_pure_function_of_the_parameters() {
+        // The same parameters give bit-identical residuals whatever was evaluated before.
+        let m = aisi1045();
+        let opts = options();
+        let problem = JointOxleyProblem::new(&m, &ivester_cases(), CONSTANTS, &opts).unwrap();
+        let p1 = DVector::from_vec(vec![553.1, 600.8, 0.234, 0.0134, 1.0]);
+        let p2 = DVector::from_vec(vec![300.0, 1100.0, 0.5, 0.004, 0.8]);
+        let (mut a, mut b, mut c) = (DVector::zeros(8), DVector::zeros(8), DVector::zeros(8));
+        problem.residuals(&p1, &mut a).unwrap();
+        problem.residuals(&p2, &mut b).unwrap();
+        problem.residuals(&p1, &mut c).unwrap();
+        assert_eq!(a, c);
+        assert_ne!(a, b);
+        let fresh = JointOxleyProblem::new(&m, &ivester_cases(), CONSTANTS, &opts).unwrap();
+        let mut d = DVector::zeros(8);
+        fresh.residuals(&p1, &mut d).unwrap();
+        assert_eq!(a, d);
     }
 
     const CONSTANTS: JcConstants = JcConstants { eps0_per_s: 1.0, tm_c: 1460.0, tr_c: 25.0 };

@@ -380,6 +380,7 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
             json: args.json,
             work_temperature_c: None,
             no_chip: args.no_chip,
+            sharp: false,
         });
     }
     let mf = load_material(&args.material)?;

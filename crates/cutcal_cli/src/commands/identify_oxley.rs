@@ -44,6 +44,9 @@ pub struct IdentifyOxleyArgs {
     /// Do not fit the measured chip thickness.
     #[arg(long)]
     pub no_chip: bool,
+    /// Ignore the tests' edge radius and flank wear in the forward model (sharp, unworn tool).
+    #[arg(long)]
+    pub sharp: bool,
 }
 
 /// The readable report of a joint identification.
@@ -105,6 +108,7 @@ pub fn run(args: &IdentifyOxleyArgs) -> Result<()> {
         physics: Physics::baseline(),
         work_temperature_c: args.work_temperature_c.unwrap_or(mf.material.room_c),
         use_chip_thickness: !args.no_chip,
+        tool_condition: !args.sharp,
     };
     let constants = JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };
     let id = identify_oxley(

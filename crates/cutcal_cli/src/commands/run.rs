@@ -430,6 +430,7 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
                 physics: cutcal_model::oxley::Physics::baseline(),
                 work_temperature_c: mf.material.room_c,
                 use_chip_thickness: true,
+                tool_condition: true,
             };
             let constants =
                 cutcal_ident::JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };

@@ -47,28 +47,38 @@ impl TemperatureHints {
     }
 }
 
-/// Half-width of the narrow temperature bracket tried around a hint, degC.
-const HINT_HALF_WIDTH_C: f64 = 3.0;
-
-/// Tries Brent on `[hint - w, hint + w]` within `[lo, hi]`; `None` if that window has no sign change.
-fn try_hint<F>(mut f: F, hint: f64, lo: f64, hi: f64, tol: f64, cap: usize, what: &str) -> Option<f64>
+/// Secant iteration from a hint (and the hint + 1 degC), kept inside `[lo, hi]`; `None` if it leaves
+/// the interval, stalls or does not converge in 12 steps (the caller then brackets the whole
+/// interval with Brent). The residuals solved here are increasing and nearly linear in T, so the
+/// secant converges in a few steps; the root is the same to `tol` whatever the hint.
+fn try_hint<F>(mut f: F, hint: f64, lo: f64, hi: f64, tol: f64) -> Option<f64>
 where
     F: FnMut(f64) -> Result<f64, ModelError>,
 {
-    if !hint.is_finite() {
+    if !hint.is_finite() || !(hi > lo) {
         return None;
     }
-    let a = (hint - HINT_HALF_WIDTH_C).max(lo);
-    let b = (hint + HINT_HALF_WIDTH_C).min(hi);
-    if !(b > a) {
-        return None;
+    let mut x0 = hint.clamp(lo, hi);
+    let mut x1 = if x0 + 1.0 <= hi { x0 + 1.0 } else { x0 - 1.0 };
+    let mut f0 = f(x0).ok()?;
+    let mut f1 = f(x1).ok()?;
+    for _ in 0..12 {
+        let df = f1 - f0;
+        if !(df.is_finite() && df != 0.0) {
+            return None;
+        }
+        let x2 = x1 - f1 * (x1 - x0) / df;
+        if !(x2 >= lo && x2 <= hi) {
+            return None;
+        }
+        if (x2 - x1).abs() <= tol {
+            return Some(x2);
+        }
+        (x0, f0) = (x1, f1);
+        x1 = x2;
+        f1 = f(x1).ok()?;
     }
-    let fa = f(a).ok()?;
-    let fb = f(b).ok()?;
-    if !(fa <= 0.0 && fb >= 0.0) {
-        return None;
-    }
-    brent_root(f, a, b, fa, fb, tol, cap, what).ok()
+    None
 }
 
 /// The primary zone and the force system at (phi, C0).
@@ -132,10 +142,16 @@ impl State {
 impl Context<'_> {
     /// Volumetric heat capacity and conductivity at `temperature_c`, evaluated with the temperature
     /// clamped to the material's stated validity range (the fits are not extrapolated).
-    fn thermal(&self, temperature_c: f64) -> (f64, f64) {
+    pub(crate) fn thermal(&self, temperature_c: f64) -> (f64, f64) {
         let th = &self.material.thermal;
         let t = temperature_c.clamp(th.valid_from_c, th.valid_to_c);
         (th.rho_cp.value(t), th.conductivity.value(t))
+    }
+
+    /// The JC softening term `1 - T*^m` at `T_w + kappa_T (T - T_w)` (the thermal-softening hook).
+    fn softening(&self, temperature_c: f64) -> f64 {
+        let tw = self.conditions.work_temperature_c;
+        self.jc.softening(tw + self.physics.thermal_softening_scale * (temperature_c - tw))
     }
 
     /// Johnson-Cook flow stress with the thermal-softening hook: evaluated at
@@ -150,9 +166,9 @@ impl Context<'_> {
     /// `beta = 0.5 - 0.35 log10(R_T tan phi)` for `0.04 <= R_T tan phi <= 10`,
     /// `beta = 0.3 - 0.15 log10(R_T tan phi)` above 10, with the thermal number
     /// `R_T = rho Cp V t1 / K`. Below 0.04 the value at 0.04 is used and flagged.
-    /// Returns `(beta scaled by the M6 hook and clamped to [0, 1], outside-correlation flag)`.
-    fn heat_partition(&self, thermal_number: f64, phi_rad: f64) -> (f64, bool) {
-        let x = thermal_number * phi_rad.tan();
+    /// Takes `x = R_T tan(phi)`; returns `(beta scaled by the M6 hook and clamped to [0, 1],
+    /// outside-correlation flag)`.
+    fn heat_partition_tan(&self, x: f64) -> (f64, bool) {
         let (beta, outside) = if x < BETA_CORRELATION_LOW {
             (0.5 - 0.35 * BETA_CORRELATION_LOW.log10(), true)
         } else if x <= 10.0 {
@@ -184,6 +200,9 @@ impl Context<'_> {
         let gamma_ab = alpha.cos() / (2.0 * sin_phi * cos_pa);
         let strain = gamma_ab / SQRT3;
         let strain_rate = c0 * v_s / (SQRT3 * l_ab);
+        // The athermal part (A + B eps^n)(1 + C ln epsdot) is fixed at (phi, C0): evaluated once.
+        let athermal = self.jc.hardening(strain) * self.jc.rate_factor(strain_rate);
+        let tan_phi = phi_rad.tan();
         let k_at_work = self.flow_stress_pa(strain, strain_rate, tw) / SQRT3;
         if !(k_at_work.is_finite() && k_at_work > 0.0) {
             return Err(ModelError::out_of_range(
@@ -197,16 +216,17 @@ impl Context<'_> {
         let eta = self.options.eta;
         let rise = |t: f64| -> (f64, f64, f64, bool) {
             let (rho_cp, cond) = self.thermal(t);
-            let k = self.flow_stress_pa(strain, strain_rate, t) / SQRT3;
+            let k = athermal * self.softening(t) / SQRT3;
             let rt = rho_cp * v * t1 / cond;
-            let (beta, outside) = self.heat_partition(rt, phi_rad);
+            let (beta, outside) = self.heat_partition_tan(rt * tan_phi);
             ((1.0 - beta) * k * alpha.cos() / (rho_cp * sin_phi * cos_pa), k, beta, outside)
         };
         let f = |t: f64| -> Result<f64, ModelError> { Ok(t - tw - eta * rise(t).0) };
         let tm = self.jc.tm_c.min(self.material.melting_c);
         let (tol, cap) = (self.options.temperature_tolerance_c, self.options.max_bracket_iterations);
         let what = "primary-zone temperature T_AB";
-        let t_ab = match try_hint(f, self.hints.ab_c.get(), tw, tm, tol, cap, what) {
+        let hint = self.hints.ab_c.get();
+        let t_ab = match try_hint(f, if hint.is_finite() { hint } else { tw + 300.0 }, tw, tm, tol) {
             Some(t) => t,
             None => {
                 let f_lo = f(tw)?;
@@ -316,7 +336,7 @@ impl Context<'_> {
         let what = "mean chip temperature T_C";
         let t_c = if top <= base {
             base + d_t_c_at(top)
-        } else if let Some(t) = try_hint(g, self.hints.int_c.get(), base, top, tol, cap, what) {
+        } else if let Some(t) = try_hint(g, self.hints.int_c.get(), base, top, tol) {
             t
         } else {
             let g_hi = g(top)?;

@@ -7,6 +7,7 @@
 //! oxley::predict(material: &Material, jc: &JcParams, conditions: &CuttingConditions,
 //!                options: &OxleyOptions, physics: &Physics) -> Result<OxleyPrediction, ModelError>
 //! oxley::predict_from(..same.., start: Option<&OxleyPrediction>)   // warm start (identification loops)
+//! oxley::predict_many(material, jc, &[CuttingConditions], options, physics) -> Vec<Result<..>>  // rayon batch
 //! ```
 //!
 //! - [`CuttingConditions`]: V, t1, w, rake, work temperature (validated).
@@ -211,6 +212,21 @@ pub fn predict(
     physics: &Physics,
 ) -> Result<OxleyPrediction, ModelError> {
     predict_from(material, jc, conditions, options, physics, None)
+}
+
+/// [`predict`] for many conditions in parallel (rayon), one result per condition in input order.
+/// Each prediction is cold-started, so the results do not depend on the thread count or order.
+///
+/// **Source:** as [`predict`].
+pub fn predict_many(
+    material: &Material,
+    jc: &JcParams,
+    conditions: &[CuttingConditions],
+    options: &OxleyOptions,
+    physics: &Physics,
+) -> Vec<Result<OxleyPrediction, ModelError>> {
+    use rayon::prelude::*;
+    conditions.par_iter().map(|c| predict(material, jc, c, options, physics)).collect()
 }
 
 /// As [`predict`], warm-started at the (phi, C0) of `start` (for loops over nearby parameters,

@@ -5,7 +5,7 @@
 
 use crate::error::ModelError;
 
-use super::equations::{Context, State};
+use super::equations::{Context, PrimaryZone, State};
 use super::roots::{brent_min, brent_root};
 
 /// Solver state across the delta search: evaluation count, the last (phi, C0) solution, flags.
@@ -13,6 +13,9 @@ pub(crate) struct Solver<'a> {
     pub ctx: Context<'a>,
     pub evaluations: usize,
     last: Option<(f64, f64)>,
+    /// The primary zone last computed: (phi, C0) repeat across delta (warm starts), and the primary
+    /// zone does not depend on delta, so it is reused exactly when (phi, C0) are bit-identical.
+    primary_cache: Option<PrimaryZone>,
     pub multiple_phi_roots: bool,
 }
 
@@ -34,12 +37,19 @@ pub(crate) struct DeltaSearch {
 
 impl<'a> Solver<'a> {
     pub fn new(ctx: Context<'a>, guess: Option<(f64, f64)>) -> Self {
-        Self { ctx, evaluations: 0, last: guess, multiple_phi_roots: false }
+        Self { ctx, evaluations: 0, last: guess, primary_cache: None, multiple_phi_roots: false }
     }
 
     fn eval(&mut self, phi: f64, c0: f64, delta: f64) -> Result<State, ModelError> {
+        if let Some(p) = self.primary_cache {
+            if p.phi_rad.to_bits() == phi.to_bits() && p.c0.to_bits() == c0.to_bits() {
+                return self.ctx.state_from(p, delta);
+            }
+        }
         self.evaluations += 1;
-        self.ctx.state(phi, c0, delta)
+        let p = self.ctx.primary(phi, c0)?;
+        self.primary_cache = Some(p);
+        self.ctx.state_from(p, delta)
     }
 
     /// Damped Newton on the two normalised residuals from `guess`, with a forward-difference
@@ -127,6 +137,7 @@ impl<'a> Solver<'a> {
         let mut prev: Option<(f64, f64)> = None;
         let mut found: Option<(f64, f64, f64, f64)> = None;
         let mut changes = 0;
+        let (mut r_min, mut r_max) = (f64::INFINITY, f64::NEG_INFINITY);
         for i in 0..n {
             let phi = lo + (hi - lo) * i as f64 / (n - 1) as f64;
             let Ok(s) = self.eval(phi, c0, delta) else {
@@ -134,6 +145,8 @@ impl<'a> Solver<'a> {
                 continue;
             };
             let r = s.residual_shear;
+            r_min = r_min.min(r);
+            r_max = r_max.max(r);
             if let Some((p0, r0)) = prev {
                 if (r0 > 0.0) != (r > 0.0) {
                     changes += 1;
@@ -152,7 +165,7 @@ impl<'a> Solver<'a> {
                 what: format!("Oxley shear angle (tau_int = k_chip) at C0 {c0:.3}, delta {delta:.4}"),
                 low: lo.to_degrees(),
                 high: hi.to_degrees(),
-                detail: "no sign change of tau_int - k_chip over the phi range (deg)".into(),
+                detail: self.no_phi_reason(r_min, r_max),
             });
         };
         let xtol = 1e-12;
@@ -167,6 +180,30 @@ impl<'a> Solver<'a> {
         };
         self.evaluations += evals;
         self.eval(phi, c0, delta)
+    }
+
+    /// The physical reason why `tau_int = k_chip` has no root over the phi range, from the extreme
+    /// residuals `(tau_int - k_chip)/k_AB` seen and the thermal number `R_T = rho Cp V t1 / K` at T_w.
+    fn no_phi_reason(&self, r_min: f64, r_max: f64) -> String {
+        let c = self.ctx.conditions;
+        let (rho_cp, k) = self.ctx.thermal(c.work_temperature_c);
+        let rt = rho_cp * c.speed_m_per_s * c.uncut_chip_thickness_m / k;
+        if !r_max.is_finite() {
+            format!("no admissible state over the phi range (deg) (thermal number R_T = {rt:.2})")
+        } else if r_max < 0.0 {
+            format!(
+                "tau_int < k_chip at every phi (largest (tau_int - k_chip)/k_AB = {r_max:.3}): the friction stress the \
+                 force system carries stays below the chip's flow stress at the interface, which is too cold to \
+                 soften at this thermal number R_T = {rt:.2} (low V t1); Oxley's sticking-interface condition has \
+                 no solution here, phi range (deg)"
+            )
+        } else {
+            format!(
+                "tau_int > k_chip at every phi (smallest (tau_int - k_chip)/k_AB = {r_min:.3}): the chip at the \
+                 interface is softer than any friction stress the force system carries (thermal number \
+                 R_T = {rt:.2}); phi range (deg)"
+            )
+        }
     }
 
     /// (phi, C0) by nested bracketing: a C0 grid scan of `sigma_N - sigma_N'` (each point with its

@@ -65,7 +65,15 @@ fn map(material: &Material, jc: &JcParams, work_c: f64) -> (usize, usize, BTreeM
                             ModelError::Inconsistent(_) => "Inconsistent",
                             _ => "other",
                         };
-                        assert!(!e.to_string().is_empty());
+                        // Every failure is typed and names its physical reason.
+                        let msg = e.to_string();
+                        assert!(
+                            matches!(e, ModelError::NoSolution { .. } | ModelError::AboveMelting { .. }),
+                            "untyped failure at V {v} t1 {t1} rake {rake}: {msg}"
+                        );
+                        if let ModelError::NoSolution { .. } = e {
+                            assert!(msg.contains("tau_int") && msg.contains("R_T ="), "no physical reason: {msg}");
+                        }
                         *errors.entry(kind.to_string()).or_default() += 1;
                     }
                 }
@@ -80,9 +88,9 @@ fn convergence_map_aisi1045_1000_conditions() {
     let (total, ok, errors) = map(&aisi1045(), &jc_aisi1045(), 25.0);
     println!("AISI 1045: {ok}/{total} converged ({:.1} %), errors {errors:?}", 100.0 * ok as f64 / total as f64);
     assert_eq!(total, 1000);
-    // The AISI 1045 conditions of Lalwani et al. 2009 sit inside this map and all solve
-    // (oxley_lalwani), so a converged share below one half would mean a broken solver.
-    assert!(ok * 2 > total, "only {ok}/{total} converged: {errors:?}");
+    // Measured 977/1000 (issue 15 asks for >= 99 %, not reached; the failures are all at low V t1,
+    // see the NoSolution reason). A regression guard, not the goal.
+    assert!(ok >= 970, "only {ok}/{total} converged: {errors:?}");
 }
 
 #[test]
@@ -90,5 +98,6 @@ fn convergence_map_aa6082_1000_conditions() {
     let (total, ok, errors) = map(&aa6082(), &jc_aa6082(), 20.0);
     println!("AA6082: {ok}/{total} converged ({:.1} %), errors {errors:?}", 100.0 * ok as f64 / total as f64);
     assert_eq!(total, 1000);
-    assert!(ok > 0, "no AA6082 condition converged: {errors:?}");
+    // Measured 942/1000 (issue 15 asks for >= 99 %, not reached). A regression guard, not the goal.
+    assert!(ok >= 935, "only {ok}/{total} converged: {errors:?}");
 }

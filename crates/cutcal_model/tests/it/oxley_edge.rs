@@ -52,3 +52,21 @@ fn edge_force_scales_with_radius_and_is_off_for_zero() {
     let (a, b) = (f(10e-6), f(40e-6));
     assert!((b / a - 4.0).abs() < 1e-9, "{a} {b}");
 }
+
+#[test]
+fn predict_many_equals_predict_in_order() {
+    let (m, jc) = (aisi1045(), jc_aisi1045());
+    let opts = OxleyOptions::wide();
+    let conds: Vec<_> = [(100.0, 0.1e-3, -7.0), (200.0, 0.15e-3, 5.0), (300.0, 0.3e-3, 0.0), (400.0, 0.2e-3, 10.0)]
+        .iter()
+        .map(|&(v, t1, r): &(f64, f64, f64)| {
+            CuttingConditions::new(v / 60.0, t1, 1.6e-3, r.to_radians(), 25.0).unwrap()
+        })
+        .collect();
+    let phys = Physics::with_tool(Some(20e-6), None).unwrap();
+    let many = oxley::predict_many(&m, &jc, &conds, &opts, &phys);
+    assert_eq!(many.len(), conds.len());
+    for (c, p) in conds.iter().zip(many) {
+        assert_eq!(p.unwrap(), oxley::predict(&m, &jc, c, &opts, &phys).unwrap());
+    }
+}
