@@ -2,10 +2,12 @@
 //!
 //! The target at the `N` interior points is the DPZD effective stress `F_k = sqrt(3) tau_e(x_k)`
 //! (Eq 8); the model is the JC stress (Eq 16) at the DPZD strain, strain rate and temperature of the
-//! same point. Unweighted least squares in MPa over `[A, B, n, C, m]` within box bounds.
+//! same point. Least squares in MPa over `[A, B, n, C, m]` within box bounds: unweighted at `N`
+//! uniform points (the paper's discrete Eq 15), or weighted by a quadrature rule so that the sum
+//! approximates the zone integral `(1/h) int (f - F)^2 dx` (see [`crate::quadrature`]).
 
 use cutcal_model::dpzd::{ZonePoint, ZoneSolution};
-use cutcal_model::JcParams;
+use cutcal_model::{JcParams, RateTerm};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
@@ -112,6 +114,8 @@ impl JcConstants {
 pub struct ZoneFitProblem {
     points: Vec<ZonePoint>,
     constants: JcConstants,
+    rate_term: RateTerm,
+    weight_sum: f64,
     cached: Vec<CachedPoint>,
 }
 
@@ -120,8 +124,10 @@ pub struct ZoneFitProblem {
 struct CachedPoint {
     /// `ln eps`, or `None` where eps = 0 (then eps^n = 0 for n > 0).
     ln_strain: Option<f64>,
-    /// `ln(epsdot/eps0)`.
+    /// `ln(epsdot/eps0)` as it enters the law (clamped at 0 for [`RateTerm::Clamped`]).
     ln_rate: f64,
+    /// Square root of the quadrature weight (1 for the uniform discrete objective).
+    sqrt_weight: f64,
     /// `ln theta`, or `None` where the homologous temperature is 0 (no softening).
     ln_theta: Option<f64>,
     /// Target `sqrt(3) tau_e`, MPa.
@@ -129,9 +135,18 @@ struct CachedPoint {
 }
 
 impl ZoneFitProblem {
-    /// A problem over the given points.
+    /// A problem over the given points, unit weights, the solvers' clamped law.
     #[must_use]
     pub fn new(points: Vec<ZonePoint>, constants: JcConstants) -> Self {
+        let w = vec![1.0; points.len()];
+        Self::weighted(points, &w, constants, RateTerm::Clamped)
+    }
+
+    /// A problem with quadrature weights `weights` (>= 0, one per point) and an explicit rate term.
+    ///
+    /// The residuals are `sqrt(w_k) (f_k - F_k)`, so the SSR is `sum w_k (f_k - F_k)^2`.
+    #[must_use]
+    pub fn weighted(points: Vec<ZonePoint>, weights: &[f64], constants: JcConstants, rate_term: RateTerm) -> Self {
         let probe = JcParams {
             a_pa: 0.0,
             b_pa: 0.0,
@@ -144,17 +159,32 @@ impl ZoneFitProblem {
         };
         let cached = points
             .iter()
-            .map(|p| {
+            .zip(weights)
+            .map(|(p, w)| {
                 let theta = probe.homologous(p.temperature_c);
                 CachedPoint {
                     ln_strain: (p.strain > 0.0).then(|| p.strain.ln()),
-                    ln_rate: (p.strain_rate_per_s / constants.eps0_per_s).ln(),
+                    ln_rate: rate_term.log_ratio(p.strain_rate_per_s, constants.eps0_per_s),
+                    sqrt_weight: w.max(0.0).sqrt(),
                     ln_theta: (theta > 0.0).then(|| theta.ln()),
                     target_mpa: p.effective_stress_pa / 1e6,
                 }
             })
             .collect();
-        Self { points, constants, cached }
+        let weight_sum = weights.iter().map(|w| w.max(0.0)).sum();
+        Self { points, constants, rate_term, weight_sum, cached }
+    }
+
+    /// The rate term of the law fitted.
+    #[must_use]
+    pub fn rate_term(&self) -> RateTerm {
+        self.rate_term
+    }
+
+    /// Unweighted residuals `f_k - F_k` in MPa at `p` (A, B in MPa).
+    #[must_use]
+    pub fn raw_residuals(&self, p: &DVector<f64>) -> Vec<f64> {
+        self.cached.iter().map(|c| Self::eval(p, c).0 - c.target_mpa).collect()
     }
 
     /// The points.
@@ -201,7 +231,7 @@ impl Problem for ZoneFitProblem {
     /// `f_k(x) - F_k` in MPa (paper Eq 15).
     fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
         for (o, c) in out.iter_mut().zip(&self.cached) {
-            *o = Self::eval(p, c).0 - c.target_mpa;
+            *o = c.sqrt_weight * (Self::eval(p, c).0 - c.target_mpa);
         }
         Ok(())
     }
@@ -211,7 +241,7 @@ impl Problem for ZoneFitProblem {
         for (i, c) in self.cached.iter().enumerate() {
             let g = Self::eval(p, c).1;
             for (k, gk) in g.iter().enumerate() {
-                out[(i, k)] = *gk;
+                out[(i, k)] = c.sqrt_weight * *gk;
             }
         }
         Ok(())
@@ -223,11 +253,14 @@ impl Problem for ZoneFitProblem {
 pub struct JcIdentification {
     /// The identified parameters.
     pub jc: JcParams,
-    /// Eq 15 objective `sqrt(sum (F - f)^2)`, MPa.
+    /// Eq 15 objective `sqrt(sum w_k (F - f)^2)`, MPa (w = 1 for the uniform points; for a
+    /// quadrature rule the weights sum to 1, so this is the zone RMS).
     pub objective_mpa: f64,
     /// RMS residual, MPa.
     pub rms_mpa: f64,
-    /// Residual field `f_k - F_k` at the fit points, MPa.
+    /// Rate term of the fitted law.
+    pub rate_term: RateTerm,
+    /// Residual field `f_k - F_k` (unweighted) at the fit points, MPa.
     pub residuals_mpa: Vec<f64>,
     /// Fit statistics (at-bound parameters, covariance, correlation).
     pub statistics: FitStatistics,
@@ -255,10 +288,29 @@ pub fn identify_from_zone(
     constants: JcConstants,
     options: &MultistartOptions,
 ) -> Result<JcIdentification, IdentError> {
+    identify_from_zone_with(zone, points, RateTerm::Clamped, bounds, constants, options)
+}
+
+/// As [`identify_from_zone`] with an explicit rate term ([`RateTerm::Unclamped`] is the paper's
+/// literal Eq 16, used by the `paper` preset only).
+///
+/// **Source:** paper Sec 4.1, Eq 15 with Eqs 13-16.
+///
+/// Returns an error as [`identify_from_zone`].
+pub fn identify_from_zone_with(
+    zone: &ZoneSolution,
+    points: usize,
+    rate_term: RateTerm,
+    bounds: &JcBounds,
+    constants: JcConstants,
+    options: &MultistartOptions,
+) -> Result<JcIdentification, IdentError> {
     if points < 6 {
         return Err(IdentError::InvalidOptions(format!("at least 6 fit points are needed, got {points}")));
     }
-    let problem = ZoneFitProblem::new(zone.interior_points(points)?, constants);
+    let pts = zone.interior_points(points)?;
+    let w = vec![1.0; pts.len()];
+    let problem = ZoneFitProblem::weighted(pts, &w, constants, rate_term);
     identify(&problem, bounds, options)
 }
 
@@ -281,8 +333,9 @@ pub fn identify(
     Ok(JcIdentification {
         jc,
         objective_mpa: report.best.ssr.sqrt(),
-        rms_mpa: stats.rms,
-        residuals_mpa: report.best.residuals.iter().copied().collect(),
+        rms_mpa: (report.best.ssr / problem.weight_sum.max(f64::MIN_POSITIVE)).sqrt(),
+        rate_term: problem.rate_term,
+        residuals_mpa: problem.raw_residuals(&report.best.params),
         statistics: stats,
         starts: report.starts,
         starts_at_best: report.starts_at_best,

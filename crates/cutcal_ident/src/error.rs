@@ -46,4 +46,14 @@ pub enum IdentError {
         /// Free parameter count.
         parameters: usize,
     },
+    /// A capped loop ended without meeting its tolerance (a typed non-convergence).
+    #[error("{what} did not converge in {iterations} iterations: {detail}")]
+    NotConverged {
+        /// Which loop.
+        what: String,
+        /// Iterations (or panels) used.
+        iterations: usize,
+        /// Last state against the tolerance.
+        detail: String,
+    },
 }

@@ -4,6 +4,8 @@
 //! - [`multistart`]: seeded Latin-hypercube multistart and fit statistics (covariance, correlation,
 //!   parameters at bounds);
 //! - [`dpzd_fit`]: the paper's Eq 15 identification from one DPZD zone solution;
+//! - [`quadrature`]: the Eq 15 objective as a zone integral (adaptive Gauss-Kronrod) and the
+//!   `converged` identification;
 //! - [`bootstrap`]: parameter uncertainty by resampling the measurements (parallel, deterministic).
 //!
 //! Data flow: `cutcal_model::dpzd::ZoneSolution` -> [`dpzd_fit::identify_from_zone`] ->
@@ -16,8 +18,10 @@ pub mod error;
 pub mod joint;
 pub mod lm;
 pub mod multistart;
+pub mod quadrature;
 
-pub use dpzd_fit::{identify_from_zone, JcBounds, JcConstants, JcIdentification};
+pub use dpzd_fit::{identify_from_zone, identify_from_zone_with, JcBounds, JcConstants, JcIdentification};
 pub use error::IdentError;
 pub use lm::{Bounds, LmOptions, Problem};
 pub use multistart::{FitStatistics, MultistartOptions};
+pub use quadrature::{identify_converged, ConvergedIdentification, ConvergedOptions};

@@ -9,8 +9,18 @@ use crate::error::{check_finite, ModelError};
 /// `sigma = (A + B eps^n) (1 + C ln(epsdot/eps0)) g(T)`, `g(T) = 1 - ((T - Tr)/(Tm - Tr))^m`
 /// (paper Eqs 14 and 16; natural logarithm).
 ///
-/// Conventions: below the reference temperature `Tr` the homologous temperature is clamped at 0
-/// (no hardening from cooling, the Abaqus/LS-DYNA convention); at or above `Tm` the stress is 0.
+/// Conventions (the law as the FE solvers implement it, the one the exported cards carry):
+/// - rate term: `1 + C ln(epsdot/eps0)` for `epsdot > eps0`, and 1 at or below `eps0`
+///   (Abaqus Analysis User's Guide, "Rate-dependent yield", Johnson-Cook rate dependence:
+///   `R = 1 + C ln(epsdot/eps0)` for `epsdot >= eps0`, `R = 1` below; and the
+///   same convention for LS-DYNA *MAT_015 (Keyword Manual Vol II) as the project brief states it);
+/// - temperature: below the reference (transition) temperature `Tr` the homologous temperature is
+///   0, so `g = 1` (no hardening from cooling), and at or above `Tm` it is 1, so the stress is 0
+///   (Abaqus "Johnson-Cook plasticity", `theta_hat = 0` below the transition temperature and
+///   1 above melting; LS-DYNA *MAT_015 melting criterion).
+///
+/// The paper's own law leaves the rate term unclamped ([`RateTerm::Unclamped`]); it is used only by
+/// the `paper` identification preset to reproduce Table 4.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct JcParams {
     /// Yield stress A, Pa.
@@ -29,6 +39,29 @@ pub struct JcParams {
     pub tm_c: f64,
     /// Reference (room) temperature Tr, degC.
     pub tr_c: f64,
+}
+
+/// How the rate term `1 + C ln(epsdot/eps0)` of Eq 16 is evaluated below `eps0`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RateTerm {
+    /// 1 at or below `eps0` (Abaqus, LS-DYNA): the law of the exported cards, the default.
+    Clamped,
+    /// The paper's literal Eq 16: `1 + C ln(epsdot/eps0)` at every rate (falls below 1, and below
+    /// 0 for `epsdot < eps0 exp(-1/C)`). Used only by the `paper` preset.
+    Unclamped,
+}
+
+impl RateTerm {
+    /// `ln(epsdot/eps0)` as it enters the law: clamped at 0 for [`RateTerm::Clamped`].
+    #[must_use]
+    pub fn log_ratio(self, strain_rate_per_s: f64, eps0_per_s: f64) -> f64 {
+        let l = (strain_rate_per_s / eps0_per_s).ln();
+        match self {
+            RateTerm::Clamped => l.max(0.0),
+            RateTerm::Unclamped => l,
+        }
+    }
 }
 
 /// Partial derivatives of the JC stress with respect to its five parameters `[A, B, n, C, m]`.
@@ -122,10 +155,23 @@ impl JcParams {
         self.a_pa + self.b_pa * pow_n(strain, self.n)
     }
 
-    /// Strain-rate term `1 + C ln(epsdot/eps0)` (paper Eq 16).
+    /// Strain-rate term `1 + C ln(epsdot/eps0)` (paper Eq 16), 1 at or below `eps0` (the solvers'
+    /// convention, see [`JcParams`]).
     #[must_use]
     pub fn rate_factor(&self, strain_rate_per_s: f64) -> f64 {
-        1.0 + self.c * (strain_rate_per_s / self.eps0_per_s).ln()
+        self.rate_factor_with(RateTerm::Clamped, strain_rate_per_s)
+    }
+
+    /// Strain-rate term under an explicit [`RateTerm`] (paper Eq 16).
+    #[must_use]
+    pub fn rate_factor_with(&self, term: RateTerm, strain_rate_per_s: f64) -> f64 {
+        1.0 + self.c * term.log_ratio(strain_rate_per_s, self.eps0_per_s)
+    }
+
+    /// Flow stress under an explicit [`RateTerm`], Pa (paper Eq 16 with Eq 14).
+    #[must_use]
+    pub fn flow_stress_with(&self, term: RateTerm, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> f64 {
+        self.hardening(strain) * self.rate_factor_with(term, strain_rate_per_s) * self.softening(temperature_c)
     }
 
     /// Johnson-Cook flow stress in Pa (paper Eq 16 with Eq 14).
@@ -143,9 +189,12 @@ impl JcParams {
         dh * self.rate_factor(strain_rate_per_s) * self.softening(temperature_c)
     }
 
-    /// Derivative of the flow stress with respect to strain rate (Pa s).
+    /// Derivative of the flow stress with respect to strain rate (Pa s); 0 at or below `eps0`.
     #[must_use]
     pub fn d_strain_rate(&self, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> f64 {
+        if strain_rate_per_s <= self.eps0_per_s {
+            return 0.0;
+        }
         self.hardening(strain) * self.c / strain_rate_per_s * self.softening(temperature_c)
     }
 
@@ -166,7 +215,7 @@ impl JcParams {
     pub fn gradient(&self, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> JcGradient {
         let en = pow_n(strain, self.n);
         let h = self.a_pa + self.b_pa * en;
-        let lnr = (strain_rate_per_s / self.eps0_per_s).ln();
+        let lnr = RateTerm::Clamped.log_ratio(strain_rate_per_s, self.eps0_per_s);
         let rf = 1.0 + self.c * lnr;
         let theta = self.homologous(temperature_c);
         let tm = theta.powf(self.m);
@@ -214,6 +263,22 @@ mod tests {
         let jc = c38();
         assert!((jc.softening(0.0) - 1.0).abs() < 1e-15);
         assert!(jc.softening(1460.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn rate_term_is_one_at_and_below_eps0_when_clamped() {
+        let jc = c38();
+        // Clamped (Abaqus/LS-DYNA): exactly the static stress at and below eps0 = 1/s.
+        for rate in [1e-6, 0.01, 0.5, 1.0] {
+            assert_eq!(jc.rate_factor(rate), 1.0);
+            assert_eq!(jc.d_strain_rate(0.5, rate, 300.0), 0.0);
+            assert_eq!(jc.gradient(0.5, rate, 300.0)[3], 0.0);
+        }
+        // Unclamped (paper Eq 16 literally): 1 + 0.069 ln(0.01) = 0.682243 (python: 1+0.069*math.log(0.01)).
+        assert!((jc.rate_factor_with(RateTerm::Unclamped, 0.01) - (1.0 + 0.069 * 0.01f64.ln())).abs() < 1e-15);
+        assert!((jc.rate_factor_with(RateTerm::Unclamped, 0.01) - 0.682243).abs() < 1e-6);
+        // Above eps0 both agree.
+        assert_eq!(jc.rate_factor(1e4), jc.rate_factor_with(RateTerm::Unclamped, 1e4));
     }
 
     #[test]

@@ -29,6 +29,6 @@ pub mod reference;
 
 pub use cutting_test::{CuttingTest, Measured, MeasuredSd};
 pub use error::ModelError;
-pub use jc::JcParams;
+pub use jc::{JcParams, RateTerm};
 pub use material::{Elastic, Friction, Interface, Material, ThermalProperties};
 pub use poly::TempPolynomial;
