@@ -4,24 +4,40 @@
 //! - required: `test`, `speed_m_min`, `uncut_mm`, `width_mm`, `rake_deg`;
 //! - forces, either per unit width `fc_n_per_mm`, `ft_n_per_mm` (N/mm) or totals over the width
 //!   `fc_n`, `ft_n` (N) -- not both kinds in one file;
-//! - optional: `chip_mm`, `edge_radius_um`, `flank_wear_mm`, `order`, `t_int_c`.
+//! - optional: `chip_mm`, `edge_radius_um`, `flank_wear_mm`, `order`, `t_int_c`;
+//! - optional per-row uncertainty (standard deviations, same units as the value columns):
+//!   `fc_sd_n_per_mm`, `ft_sd_n_per_mm` with per-width forces or `fc_sd_n`, `ft_sd_n` with totals,
+//!   and `chip_sd_mm`; they go to [`CuttingTest::with_measurement_sd`];
+//! - optional covariates written by `cutcal recordings` (0/1): `wear_flag` (significant drift across
+//!   the steady window, possible tool wear) and `bue_flag` (strong low-frequency oscillation,
+//!   possible built-up edge); they are checked here and left to the diagnosis.
 //!
-//! An empty cell means "not measured".
+//! An empty cell means "not measured". When a file has no sd column for a quantity, repeated tests
+//! at one condition (same speed, uncut chip thickness, width, rake, edge radius and flank wear; two
+//! or more rows measuring it) give it: the sample standard deviation of the repeats is set on each
+//! of them ([`derive_sd_from_repeats`]).
 
 use std::collections::HashSet;
 use std::path::Path;
 
 use cutcal_model::dpzd::ShearPlaneState;
-use cutcal_model::CuttingTest;
+use cutcal_model::{CuttingTest, MeasuredSd};
 
 use super::{model_reason, read_text, InputError};
 
 pub(crate) const REQUIRED: [&str; 5] = ["test", "speed_m_min", "uncut_mm", "width_mm", "rake_deg"];
-pub(crate) const OPTIONAL: [&str; 10] = [
+pub(crate) const OPTIONAL: [&str; 17] = [
     "fc_n_per_mm",
     "ft_n_per_mm",
     "fc_n",
     "ft_n",
+    "fc_sd_n_per_mm",
+    "ft_sd_n_per_mm",
+    "fc_sd_n",
+    "ft_sd_n",
+    "chip_sd_mm",
+    "wear_flag",
+    "bue_flag",
     "chip_mm",
     "edge_radius_um",
     "flank_wear_mm",
@@ -100,15 +116,16 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
             return Err(InputError::new(path, header_line, r, "", "required column is missing"));
         }
     }
-    let per_mm = headers.iter().any(|h| h == "fc_n_per_mm" || h == "ft_n_per_mm");
-    let totals = headers.iter().any(|h| h == "fc_n" || h == "ft_n");
+    let per_mm =
+        headers.iter().any(|h| ["fc_n_per_mm", "ft_n_per_mm", "fc_sd_n_per_mm", "ft_sd_n_per_mm"].contains(&h));
+    let totals = headers.iter().any(|h| ["fc_n", "ft_n", "fc_sd_n", "ft_sd_n"].contains(&h));
     if per_mm && totals {
         return Err(InputError::new(
             path,
             header_line,
             "fc_n",
             "",
-            "give forces either per unit width (fc_n_per_mm, ft_n_per_mm) or as totals (fc_n, ft_n), not both",
+            "give forces either per unit width (fc_n_per_mm, ft_n_per_mm, fc_sd_n_per_mm, ft_sd_n_per_mm) or as totals (fc_n, ft_n, fc_sd_n, ft_sd_n), not both",
         ));
     }
     let col = |name: &str| headers.iter().position(|h| h == name);
@@ -180,6 +197,44 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
         let vb = num("flank_wear_mm", false)?;
         t = t.with_tool_condition(re.map(|r| r * 1e-6), None).map_err(located("edge_radius_um"))?;
         t = t.with_tool_condition(re.map(|r| r * 1e-6), vb.map(|v| v * 1e-3)).map_err(located("flank_wear_mm"))?;
+        let (fc_sd, ft_sd, fc_sd_name, ft_sd_name) = if totals {
+            let w = t.width_m;
+            (num("fc_sd_n", false)?.map(|f| f / w), num("ft_sd_n", false)?.map(|f| f / w), "fc_sd_n", "ft_sd_n")
+        } else {
+            (
+                num("fc_sd_n_per_mm", false)?.map(|f| f * 1e3),
+                num("ft_sd_n_per_mm", false)?.map(|f| f * 1e3),
+                "fc_sd_n_per_mm",
+                "ft_sd_n_per_mm",
+            )
+        };
+        let chip_sd = num("chip_sd_mm", false)?.map(|c| c * 1e-3);
+        for (name, v) in [(fc_sd_name, fc_sd), (ft_sd_name, ft_sd), ("chip_sd_mm", chip_sd)] {
+            if v.is_some_and(|x| x <= 0.0) {
+                return Err(InputError::new(path, line, name, cell(name), "a standard deviation must be > 0"));
+            }
+        }
+        t = t
+            .with_measurement_sd(MeasuredSd {
+                cutting_force_n_per_m: fc_sd,
+                feed_force_n_per_m: ft_sd,
+                chip_thickness_m: chip_sd,
+            })
+            .map_err(|e| {
+                let field = match &e {
+                    cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("feed") => ft_sd_name,
+                    cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("chip") => "chip_sd_mm",
+                    _ => fc_sd_name,
+                };
+                InputError::new(path, line, field, cell(field), model_reason(&e))
+            })?;
+        for flag in ["wear_flag", "bue_flag"] {
+            if let Some(v) = num(flag, false)? {
+                if v.abs() > 0.0 && (v - 1.0).abs() > 0.0 {
+                    return Err(InputError::new(path, line, flag, cell(flag), "a flag is 0 or 1"));
+                }
+            }
+        }
         if let Some(o) = num("order", false)? {
             if o < 0.0 || o.fract().abs() > 0.0 || o > 1e9 {
                 return Err(InputError::new(path, line, "order", o, "must be a non-negative whole number"));
@@ -199,7 +254,78 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
     if tests.is_empty() {
         return Err(InputError::new(path, header_line, "(rows)", "", "no test rows"));
     }
+    let has = |names: [&str; 2]| names.iter().any(|n| headers.iter().any(|h| h == *n));
+    derive_sd_from_repeats(
+        &mut tests,
+        [!has(["fc_sd_n_per_mm", "fc_sd_n"]), !has(["ft_sd_n_per_mm", "ft_sd_n"]), !has(["chip_sd_mm", "chip_sd_mm"])],
+    );
     Ok(tests)
+}
+
+/// Sets the sample standard deviation (n - 1 denominator) of repeated tests at one condition on
+/// each repeat, for the quantities `[fc, ft, chip]` marked in `which` that are not already set.
+/// A condition is the tuple (speed, uncut chip thickness, width, rake, edge radius, flank wear),
+/// compared to 1e-9 relative; a quantity needs two or more rows measuring it. A spread of zero
+/// (identical repeats) states no uncertainty and is not set.
+pub fn derive_sd_from_repeats(tests: &mut [CuttingTest], which: [bool; 3]) {
+    let key = |t: &CuttingTest| {
+        [
+            t.speed_m_per_s,
+            t.uncut_chip_thickness_m,
+            t.width_m,
+            t.rake_rad,
+            t.edge_radius_m.unwrap_or(0.0),
+            t.flank_wear_m.unwrap_or(0.0),
+        ]
+    };
+    let same = |a: [f64; 6], b: [f64; 6]| {
+        a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1e-30))
+    };
+    let n = tests.len();
+    let mut group = vec![usize::MAX; n];
+    for i in 0..n {
+        if group[i] == usize::MAX {
+            group[i] = i;
+            for j in i + 1..n {
+                if group[j] == usize::MAX && same(key(&tests[i]), key(&tests[j])) {
+                    group[j] = i;
+                }
+            }
+        }
+    }
+    for q in 0..3 {
+        if !which[q] {
+            continue;
+        }
+        let get = |t: &CuttingTest| match q {
+            0 => t.measured.cutting_force_n_per_m,
+            1 => t.measured.feed_force_n_per_m,
+            _ => t.measured.chip_thickness_m,
+        };
+        for g in 0..n {
+            let members: Vec<usize> = (0..n).filter(|&i| group[i] == g && get(&tests[i]).is_some()).collect();
+            if members.len() < 2 {
+                continue;
+            }
+            let vals: Vec<f64> = members.iter().filter_map(|&i| get(&tests[i])).collect();
+            let mean = vals.iter().sum::<f64>() / vals.len() as f64;
+            let sd = (vals.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (vals.len() - 1) as f64).sqrt();
+            if !(sd > 0.0) {
+                continue;
+            }
+            for &i in &members {
+                let s = &mut tests[i].measured.sd;
+                let slot = match q {
+                    0 => &mut s.cutting_force_n_per_m,
+                    1 => &mut s.feed_force_n_per_m,
+                    _ => &mut s.chip_thickness_m,
+                };
+                if slot.is_none() {
+                    *slot = Some(sd);
+                }
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -267,5 +393,67 @@ mod tests {
         .unwrap_err();
         assert_eq!((e.line, e.field.as_str(), e.value.as_str()), (Some(2), "ft_n_per_mm", "600"));
         assert!(e.reason.contains("positive shear force"), "{e}");
+    }
+
+    #[test]
+    fn sd_columns_are_read_in_si() {
+        let t = parse(
+            "test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm,ft_n_per_mm,fc_sd_n_per_mm,ft_sd_n_per_mm,chip_mm,chip_sd_mm\n\
+             1,240,0.075,1.95,0,224,120,3.5,2.25,0.157,0.004\n",
+        )
+        .unwrap();
+        let sd = t[0].measured.sd;
+        // 3.5 N/mm = 3500 N/m, 2.25 N/mm = 2250 N/m, 0.004 mm = 4e-6 m.
+        assert!((sd.cutting_force_n_per_m.unwrap() - 3500.0).abs() < 1e-9);
+        assert!((sd.feed_force_n_per_m.unwrap() - 2250.0).abs() < 1e-9);
+        assert!((sd.chip_thickness_m.unwrap() - 4e-6).abs() < 1e-18);
+    }
+
+    #[test]
+    fn total_sd_columns_are_divided_by_width() {
+        let t = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n,fc_sd_n\n1,200,0.15,1.6,-7,610,8\n").unwrap();
+        // 8 N over 1.6 mm = 5 N/mm = 5000 N/m.
+        assert!((t[0].measured.sd.cutting_force_n_per_m.unwrap() - 5000.0).abs() < 1e-9);
+        let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n,fc_sd_n_per_mm\n1,200,0.15,1.6,-7,610,8\n")
+            .unwrap_err();
+        assert!(e.reason.contains("not both"), "{e}");
+    }
+
+    #[test]
+    fn bad_sd_and_flag_cells_are_located() {
+        let e =
+            parse("test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm,fc_sd_n_per_mm\n1,200,0.15,1,0,200,-1\n")
+                .unwrap_err();
+        assert_eq!((e.line, e.field.as_str(), e.value.as_str()), (Some(2), "fc_sd_n_per_mm", "-1"));
+        let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg,chip_mm,chip_sd_mm\n1,200,0.15,1,0,0.3,abc\n")
+            .unwrap_err();
+        assert_eq!((e.field.as_str(), e.value.as_str()), ("chip_sd_mm", "abc"));
+        let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg,bue_flag\n1,200,0.15,1,0,2\n").unwrap_err();
+        assert_eq!((e.field.as_str(), e.value.as_str()), ("bue_flag", "2"));
+    }
+
+    #[test]
+    fn repeats_give_the_sd_when_no_column_states_it() {
+        // Tests 1-3 repeat one condition: Fc 200, 204, 196 N/mm -> mean 200, sample sd
+        // sqrt((0 + 16 + 16) / 2) = 4 N/mm; Ft 100, 100, 103 -> sd sqrt((1 + 1 + 4) / 2) = sqrt(3).
+        // Test 4 is another condition (alone): no sd.
+        let t = parse(
+            "test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm,ft_n_per_mm\n\
+             1,200,0.15,1,0,200,100\n2,200,0.15,1,0,204,100\n3,200,0.15,1,0,196,103\n4,300,0.15,1,0,180,90\n",
+        )
+        .unwrap();
+        for r in &t[..3] {
+            assert!((r.measured.sd.cutting_force_n_per_m.unwrap() - 4000.0).abs() < 1e-6);
+            assert!((r.measured.sd.feed_force_n_per_m.unwrap() - 3f64.sqrt() * 1e3).abs() < 1e-6);
+            assert!(r.measured.sd.chip_thickness_m.is_none());
+        }
+        assert_eq!(t[3].measured.sd, MeasuredSd::default());
+        // With an sd column the column wins, and the repeats do not fill that quantity.
+        let t = parse(
+            "test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm,fc_sd_n_per_mm\n1,200,0.15,1,0,200,1\n2,200,0.15,1,0,204,\n",
+        )
+        .unwrap();
+        assert!((t[0].measured.sd.cutting_force_n_per_m.unwrap() - 1000.0).abs() < 1e-9);
+        assert!(t[1].measured.sd.cutting_force_n_per_m.is_none());
     }
 }
