@@ -1,6 +1,6 @@
 //! Abaqus keyword cards (fe-cards.md §2): native JC material, tabular `*PLASTIC` variant, tool
 //! material, `*SURFACE INTERACTION` with the Eq 17 friction table (or Coulomb), `*GAP CONDUCTANCE`,
-//! and a VFRIC user-subroutine source for the exact Eq 17 law.
+//! and a VFRICTION user-subroutine source for the exact Eq 17 law with the local k(T).
 
 use handlebars::Handlebars;
 use serde::Serialize;
@@ -37,14 +37,23 @@ struct JcCtx {
 struct MuRow {
     mu: f64,
     p: f64,
+    t: f64,
+}
+
+#[derive(Serialize)]
+struct KRow {
+    t: f64,
+    k: f64,
 }
 
 #[derive(Serialize)]
 struct Eq17Ctx {
     m0: f64,
     beta: f64,
-    k: f64,
     taumax: f64,
+    eps_ref: f64,
+    rate_ref: f64,
+    k_rows: Vec<KRow>,
     rows: Vec<MuRow>,
 }
 
@@ -112,9 +121,18 @@ pub(crate) fn render(
         .map(|m| Eq17Ctx {
             m0: m.m0,
             beta: m.beta_per_pa / f.stress,
-            k: m.k_pa * f.stress,
-            taumax: m.m0 * m.k_pa * f.stress,
-            rows: m.points.iter().map(|(pr, mu)| MuRow { mu: *mu, p: pr * f.stress }).collect(),
+            // The coldest row has the largest k: TAUMAX is the cap of the whole table.
+            taumax: m.m0 * m.by_temperature.iter().map(|r| r.k_pa).fold(0.0, f64::max) * f.stress,
+            eps_ref: crate::physics::FRICTION_REFERENCE_STRAIN,
+            rate_ref: crate::physics::FRICTION_REFERENCE_STRAIN_RATE_PER_S,
+            k_rows: m.by_temperature.iter().map(|r| KRow { t: kelvin(r.temp_c), k: r.k_pa * f.stress }).collect(),
+            rows: m
+                .by_temperature
+                .iter()
+                .flat_map(|r| {
+                    r.points.iter().map(move |(pr, mu)| MuRow { mu: *mu, p: pr * f.stress, t: kelvin(r.temp_c) })
+                })
+                .collect(),
         })
         .collect();
     let pmax = input.options.contact_pressures_pa.last().copied().unwrap_or(0.0) * f.stress;
@@ -153,11 +171,12 @@ pub(crate) fn render(
     ];
     if let Some(eq) = ctx.eq17.first() {
         let v = serde_json::json!({
-            "h": value["h"], "stress_unit": ctx.stress_unit, "m0": eq.m0, "beta": eq.beta, "k": eq.k,
+            "h": value["h"], "stress_unit": ctx.stress_unit, "m0": eq.m0, "beta": eq.beta,
+            "jc": value["jc"], "eps_ref": eq.eps_ref, "rate_ref": eq.rate_ref,
         });
         files.push(ExportFile {
-            name: format!("{}_abaqus_vfric.f", p.stem),
-            contents: templates::render(hb, "abaqus_vfric", &v)?,
+            name: format!("{}_abaqus_vfriction.f", p.stem),
+            contents: templates::render(hb, "abaqus_vfriction", &v)?,
         });
     }
     Ok(files)

@@ -31,7 +31,7 @@ const TEMPLATES: &[(&str, &str)] = &[
     ("abaqus_jc", include_str!("../../../templates/abaqus_jc.inp.hbs")),
     ("abaqus_tabular", include_str!("../../../templates/abaqus_tabular.inp.hbs")),
     ("abaqus_thermal", include_str!("../../../templates/abaqus_thermal.inp.hbs")),
-    ("abaqus_vfric", include_str!("../../../templates/abaqus_vfric.f.hbs")),
+    ("abaqus_vfriction", include_str!("../../../templates/abaqus_vfriction.f.hbs")),
     ("lsdyna", include_str!("../../../templates/lsdyna.k.hbs")),
     ("deform_key", include_str!("../../../templates/deform.key.hbs")),
     ("deform_sheet", include_str!("../../../templates/deform_sheet.txt.hbs")),

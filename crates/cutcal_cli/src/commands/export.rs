@@ -251,7 +251,7 @@ mod tests {
             [
                 "c38_abaqus_jc.inp",
                 "c38_abaqus_tabular.inp",
-                "c38_abaqus_vfric.f",
+                "c38_abaqus_vfriction.f",
                 "c38_deform.key",
                 "c38_deform_sheet.txt",
                 "c38_lsdyna.k",

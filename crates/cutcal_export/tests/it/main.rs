@@ -10,3 +10,5 @@ mod dynars_deck;
 mod calculix;
 // Property tests: columns, render -> parse round trip, NaN/inf rejected.
 mod roundtrip;
+// The VFRICTION source compiled with gfortran and called with the documented argument order.
+mod vfriction;
