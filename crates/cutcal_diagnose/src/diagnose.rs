@@ -66,7 +66,10 @@ struct Candidate {
     explained: f64,
     absorption: f64,
     screen_p: f64,
-    ci: Vec<(f64, f64, f64)>,
+    /// Estimate and 95 % interval per fitted parameter (`None` ends when not available).
+    ci: Vec<(f64, Option<f64>, Option<f64>)>,
+    /// Why the interval is not available (empty when it is).
+    ci_note: String,
     ci_ok: bool,
     change: Vec<f64>,
     /// Screening sensitivity of the first parameter (noise units per typical magnitude).
@@ -160,7 +163,7 @@ impl Problem<'_> {
                 )?;
                 let resid = fit::residuals(&te_obs, &preds, &self.cfg.noise);
                 // Keep the training fit (rss, k) and the held-out residuals/predictions.
-                fits.push(Fit { x: f.x, resid, rss: f.rss, k: f.k, preds });
+                fits.push(Fit { x: f.x, resid, rss: f.rss, k: f.k, preds, status: f.status });
             }
             per_fold.push(fits);
         }
@@ -203,6 +206,10 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     let ctx0 = Context::of(tests);
     let base_spec = Spec { mechanisms: Vec::new(), ctx: ctx0.clone() };
     let base = pr.fit(&base_spec, None)?;
+    let mut fit_notes: Vec<String> = Vec::new();
+    if let Some(note) = base.status.note() {
+        fit_notes.push(format!("baseline fit: {note}"));
+    }
     let dof = n.saturating_sub(base.k).max(1);
     let global = GlobalMisfit { chi2: base.rss, dof, p_value: stats::chi2_sf(base.rss, dof as f64) };
     let mismatch = locate(tests, &pr.obs, &base.preds, &noise);
@@ -247,7 +254,18 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         if remaining.is_empty() {
             break;
         }
-        let mut cands = screen_and_refit(&pr, &current, &current_spec, &remaining)?;
+        let (mut cands, lost) = screen_and_refit(&pr, &current, &current_spec, &remaining)?;
+        for mut l in lost {
+            if round > 0 {
+                l.reason = format!("round {}: {}", round + 1, l.reason);
+            }
+            not_testable.push(l);
+        }
+        for c in &cands {
+            if let Some(note) = c.fit.status.note() {
+                fit_notes.push(format!("refit with {}: {note}", c.id.as_str()));
+            }
+        }
         // Significance, interval.
         for c in &mut cands {
             c.significant = c.p.is_finite() && c.p < alpha_k;
@@ -417,7 +435,10 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     if verdict == Verdict::Ambiguous && ambiguous.len() == 1 && base_loco.is_some() {
         verdict = Verdict::Unexplained;
     }
-    all_results.sort_by(|a, b| b.accepted.cmp(&a.accepted).then(a.delta_aicc.total_cmp(&b.delta_aicc)));
+    all_results.sort_by(|a, b| {
+        let key = |m: &MechanismResult| m.delta_aicc.unwrap_or(f64::INFINITY);
+        b.accepted.cmp(&a.accepted).then(key(a).total_cmp(&key(b)))
+    });
 
     let outputs: Vec<usize> = pr.obs.iter().map(|o| o.output).collect();
     let after_fit = &current;
@@ -478,6 +499,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         baseline_params_before: named(&base.x),
         baseline_params_after: named(&current.x),
         not_testable,
+        fit_notes,
         residuals,
     })
 }
@@ -523,7 +545,8 @@ fn screen_and_refit(
     current: &Fit,
     current_spec: &Spec,
     remaining: &[MechanismId],
-) -> Result<Vec<Candidate>, DiagnoseError> {
+) -> Result<(Vec<Candidate>, Vec<NotTestable>), DiagnoseError> {
+    let mut lost = Vec::new();
     let noise = pr.cfg.noise;
     let n = pr.n();
     let (_, lo, hi, _) = fit::layout(pr.sim, current_spec);
@@ -553,6 +576,7 @@ fn screen_and_refit(
     for &m in remaining {
         let onsets = if m == MechanismId::BuiltUpEdge { bue_onsets(pr.tests) } else { vec![0.0] };
         let mut best: Option<Screened> = None;
+        let mut screen_error: Option<String> = None;
         for onset in onsets {
             let mut ctx = current_spec.ctx.clone();
             if m == MechanismId::BuiltUpEdge {
@@ -566,7 +590,14 @@ fn screen_and_refit(
             let mut s = DMatrix::zeros(n, d);
             let mut x = current.x.clone();
             x.extend(inf.params.iter().take(d).map(|p| p.off));
-            let Ok(p0) = fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &x) else { continue };
+            let p0 = match fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &x) {
+                Ok(p0) => p0,
+                Err(e) => {
+                    screen_error =
+                        Some(format!("screen: the model has no solution with the mechanism at its off value ({e})"));
+                    continue;
+                }
+            };
             let r0 = fit::residuals(&pr.obs, &p0, &noise);
             let mut failed = false;
             for c in 0..d {
@@ -574,9 +605,17 @@ fn screen_and_refit(
                 let h = 0.1 * (pi.typical - pi.off);
                 let mut xp = x.clone();
                 xp[current.k + c] += h;
-                let Ok(pp) = fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &xp) else {
-                    failed = true;
-                    break;
+                let pp = match fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &xp) {
+                    Ok(pp) => pp,
+                    Err(e) => {
+                        screen_error = Some(format!(
+                            "screen: the model has no solution at the probe {} = {:.4} ({e})",
+                            pi.name,
+                            xp[current.k + c]
+                        ));
+                        failed = true;
+                        break;
+                    }
                 };
                 let rp = fit::residuals(&pr.obs, &pp, &noise);
                 for i in 0..n {
@@ -602,8 +641,13 @@ fn screen_and_refit(
                 best = Some(Screened { id: m, spec, u, p, absorption, sens: s.column(0).iter().copied().collect() });
             }
         }
-        if let Some(b) = best {
-            screened.push(b);
+        match (best, screen_error) {
+            (Some(b), _) => screened.push(b),
+            (None, Some(reason)) => lost.push(NotTestable { id: m.as_str().into(), reason }),
+            (None, None) => lost.push(NotTestable {
+                id: m.as_str().into(),
+                reason: "screen: no onset candidate on this design".into(),
+            }),
         }
     }
     screened.sort_by(|a, b| b.u.total_cmp(&a.u));
@@ -628,8 +672,16 @@ fn screen_and_refit(
         x0.extend_from_slice(&start[current.k..]);
         let f = match pr.fit(&s.spec, Some(&x0)) {
             Ok(f) => f,
-            Err(_) => continue,
+            Err(e) => {
+                lost.push(NotTestable { id: s.id.as_str().into(), reason: format!("refit failed: {e}") });
+                continue;
+            }
         };
+        if matches!(f.status, fit::FitStatus::Underdetermined | fit::FitStatus::ShortRetry(_)) {
+            let why = f.status.note().unwrap_or_default();
+            lost.push(NotTestable { id: s.id.as_str().into(), reason: format!("refit not usable: {why}") });
+            continue;
+        }
         let d = f.k - current.k;
         let p = f_test(current.rss, f.rss, d, n, f.k, one_sided(s.id));
         let daicc = stats::aicc(f.rss, n, f.k) - stats::aicc(current.rss, n, current.k);
@@ -638,6 +690,7 @@ fn screen_and_refit(
         let cols: Vec<usize> = (0..f.k).collect();
         let steps: Vec<f64> = (0..f.k).map(|i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
         let mut ci = Vec::new();
+        let mut ci_note = String::new();
         let mut ci_ok = false;
         if let Ok(jf) = data_jacobian(pr.sim, pr.tests, &pr.obs, &s.spec, &pr.cfg.noise, &f.x, &cols, &steps) {
             let mut jtj = jf.transpose() * &jf;
@@ -649,7 +702,11 @@ fn screen_and_refit(
             let df2 = n.saturating_sub(f.k);
             let s2f = if df2 > 0 { (f.rss / df2 as f64).max(1e-12) } else { 1.0 };
             let tq = stats::t_quantile_two_sided(0.05, df2.max(1) as f64);
-            if let Some(cov) = jtj.try_inverse() {
+            let inverse = jtj.try_inverse();
+            if inverse.is_none() {
+                ci_note = "the joint information matrix is singular (parameters not separable here)".into();
+            }
+            if let Some(cov) = inverse {
                 let inf = info(s.id);
                 let mut any_excludes = false;
                 let mut far_bound = false;
@@ -658,7 +715,12 @@ fn screen_and_refit(
                     let v = f.x[current.k + c];
                     let se = (cov[(current.k + c, current.k + c)].max(0.0) * s2f).sqrt();
                     let (l, h) = ((v - tq * se).max(pi.lower), (v + tq * se).min(pi.upper));
-                    ci.push((v, l, h));
+                    if l.is_finite() && h.is_finite() {
+                        ci.push((v, Some(l), Some(h)));
+                    } else {
+                        ci.push((v, None, None));
+                        ci_note = "the joint covariance is not finite at the estimate".into();
+                    }
                     if pi.off < l || pi.off > h {
                         any_excludes = true;
                     }
@@ -671,7 +733,10 @@ fn screen_and_refit(
             }
         }
         if ci.is_empty() {
-            ci = (0..d).map(|c| (f.x[current.k + c], f64::NAN, f64::NAN)).collect();
+            if ci_note.is_empty() {
+                ci_note = "the model has no solution at a Jacobian probe of the refit".into();
+            }
+            ci = (0..d).map(|c| (f.x[current.k + c], None, None)).collect();
         }
         let change: Vec<f64> = current.resid.iter().zip(&f.resid).map(|(a, b)| a - b).collect();
         out.push(Candidate {
@@ -684,6 +749,7 @@ fn screen_and_refit(
             absorption: s.absorption,
             screen_p: s.p,
             ci,
+            ci_note,
             ci_ok,
             change,
             sens: s.sens,
@@ -693,7 +759,12 @@ fn screen_and_refit(
             reason: String::new(),
         });
     }
-    Ok(out)
+    Ok((out, lost))
+}
+
+/// `Some(v)` for a finite number, `None` otherwise (reports never carry NaN or inf).
+fn finite(v: f64) -> Option<f64> {
+    v.is_finite().then_some(v)
 }
 
 fn result_of(
@@ -707,13 +778,28 @@ fn result_of(
     let inf = info(c.id);
     let mut params = BTreeMap::new();
     for (pi, (v, l, h)) in inf.params.iter().zip(&c.ci) {
-        params.insert(pi.name.to_string(), ParamValue { value: *v, unit: pi.unit.into(), ci_low: *l, ci_high: *h });
+        params.insert(
+            pi.name.to_string(),
+            ParamValue {
+                value: *v,
+                unit: pi.unit.into(),
+                ci_low: *l,
+                ci_high: *h,
+                ci_note: if l.is_some() && h.is_some() { String::new() } else { c.ci_note.clone() },
+            },
+        );
     }
     if c.id == MechanismId::BuiltUpEdge {
         let v = c.spec.ctx.bue_onset_m_min;
         params.insert(
             "v_onset".into(),
-            ParamValue { value: v, unit: "m/min".into(), ci_low: f64::NAN, ci_high: f64::NAN },
+            ParamValue {
+                value: v,
+                unit: "m/min".into(),
+                ci_low: None,
+                ci_high: None,
+                ci_note: "chosen on a grid of the tested speeds, not fitted".into(),
+            },
         );
     }
     let outputs: Vec<usize> = obs.iter().map(|o| o.output).collect();
@@ -721,13 +807,13 @@ fn result_of(
         id: c.id.as_str().into(),
         accepted: c.accepted,
         params,
-        delta_aicc: c.daicc,
-        p_value: c.p,
+        delta_aicc: finite(c.daicc),
+        p_value: finite(c.p),
         heldout_rms_before: base_loco.map(|l| rms_pct(&l.resid, &outputs, noise).all),
         heldout_rms_after: c.loco_after.as_ref().map(|l| rms_pct(&l.resid, &outputs, noise).all),
         explained_fraction: c.explained,
         absorption: c.absorption,
-        screen_p_value: c.screen_p,
+        screen_p_value: finite(c.screen_p),
         reason: c.reason.clone(),
     }
 }

@@ -4,7 +4,7 @@
 //! Residuals are log-ratios in noise units, `e = ln(y_measured / y_model) / s_j` (design note
 //! Sec 3.1, multiplicative noise), followed by the weak-prior pseudo-residuals of the baseline.
 
-use cutcal_ident::lm::{minimise, Bounds, LmOptions, Problem};
+use cutcal_ident::lm::{minimise, Bounds, LmOptions, Problem, Termination};
 use cutcal_ident::IdentError;
 use cutcal_model::CuttingTest;
 use nalgebra::{DMatrix, DVector};
@@ -177,6 +177,44 @@ pub struct Fit {
     pub k: usize,
     /// Predictions at `x`.
     pub preds: Vec<Prediction>,
+    /// How the minimiser ended (reported, never hidden: a capped or unmoved fit is named as such).
+    pub status: FitStatus,
+}
+
+/// How a fit ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FitStatus {
+    /// A tolerance was met (gradient, cost or step) or the damping stalled at a minimum.
+    Converged,
+    /// The iteration cap was reached before any tolerance was met.
+    IterationCap(usize),
+    /// Fewer numbers than free parameters: the start point was kept, nothing was fitted.
+    Underdetermined,
+    /// The full run failed away from the start; a short damped rerun of this many iterations stood.
+    ShortRetry(usize),
+    /// No free parameters.
+    NothingToFit,
+}
+
+impl FitStatus {
+    /// Whether the parameters are a fitted minimum (converged or stopped by damping).
+    #[must_use]
+    pub fn is_fitted(self) -> bool {
+        matches!(self, Self::Converged | Self::NothingToFit)
+    }
+
+    /// A short description for reports, `None` when the fit converged.
+    #[must_use]
+    pub fn note(self) -> Option<String> {
+        match self {
+            Self::Converged | Self::NothingToFit => None,
+            Self::IterationCap(n) => Some(format!("fit stopped at its iteration cap of {n}")),
+            Self::Underdetermined => Some("fewer measured numbers than free parameters: nothing fitted".into()),
+            Self::ShortRetry(n) => Some(format!(
+                "full fit failed inside the model's unsolvable region; a damped {n}-iteration rerun stood"
+            )),
+        }
+    }
 }
 
 /// Fits `spec` to `obs` from `start` (or the layout's start when `None`).
@@ -196,21 +234,28 @@ pub fn fit(
         Some(s) if s.len() == s0.len() => s.iter().zip(lo.iter().zip(&hi)).map(|(v, (l, h))| v.clamp(*l, *h)).collect(),
         _ => s0,
     };
-    let x = if names.is_empty() {
-        Vec::new()
+    let (x, status) = if names.is_empty() {
+        (Vec::new(), FitStatus::NothingToFit)
     } else {
         let problem = FitProblem { sim, tests, obs, spec, noise: *noise };
         let bounds = Bounds::new(names, lo, hi).map_err(|e| DiagnoseError::Fit(e.to_string()))?;
         let opts = LmOptions { max_iterations, gradient_tolerance: 1e-8, cost_tolerance: 1e-10, step_tolerance: 1e-9 };
         match minimise(&problem, &bounds, &DVector::from_vec(x0.clone()), &opts) {
-            Ok(r) => r.params.iter().copied().collect(),
-            Err(IdentError::Underdetermined { .. }) => x0,
+            Ok(r) => {
+                let status = if r.termination == Termination::MaxIterations {
+                    FitStatus::IterationCap(max_iterations)
+                } else {
+                    FitStatus::Converged
+                };
+                (r.params.iter().copied().collect(), status)
+            }
+            Err(IdentError::Underdetermined { .. }) => (x0, FitStatus::Underdetermined),
             // A failure away from the start (a finite-difference probe outside the model's solvable
             // region) is retried once with a short, heavily damped run; then the error stands.
             Err(e) => {
                 let short = LmOptions { max_iterations: 5, ..opts };
                 match minimise(&problem, &bounds, &DVector::from_vec(x0.clone()), &short) {
-                    Ok(r) => r.params.iter().copied().collect(),
+                    Ok(r) => (r.params.iter().copied().collect(), FitStatus::ShortRetry(short.max_iterations)),
                     Err(_) => return Err(DiagnoseError::Fit(e.to_string())),
                 }
             }
@@ -219,7 +264,7 @@ pub fn fit(
     let preds = predict(sim, tests, spec, &spec.ctx, &x)?;
     let resid = residuals(obs, &preds, noise);
     let rss = resid.iter().map(|r| r * r).sum();
-    Ok(Fit { k: x.len(), x, resid, rss, preds })
+    Ok(Fit { k: x.len(), x, resid, rss, preds, status })
 }
 
 /// Central-difference Jacobian of the data residuals (rows) with respect to the parameters

@@ -54,10 +54,13 @@ pub struct ParamValue {
     pub value: f64,
     /// Unit.
     pub unit: String,
-    /// Lower end of the 95 % interval (clipped to the bounds).
-    pub ci_low: f64,
-    /// Upper end of the 95 % interval (clipped to the bounds).
-    pub ci_high: f64,
+    /// Lower end of the 95 % interval (clipped to the bounds); `None` when not available.
+    pub ci_low: Option<f64>,
+    /// Upper end of the 95 % interval (clipped to the bounds); `None` when not available.
+    pub ci_high: Option<f64>,
+    /// Why the interval is not available (empty when it is).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub ci_note: String,
 }
 
 /// One refitted mechanism.
@@ -69,10 +72,12 @@ pub struct MechanismResult {
     pub accepted: bool,
     /// Fitted parameters.
     pub params: BTreeMap<String, ParamValue>,
-    /// AICc(with mechanism) - AICc(baseline); negative favours the mechanism.
-    pub delta_aicc: f64,
-    /// F-test p-value of the joint refit against the baseline (one-sided where the parameter is).
-    pub p_value: f64,
+    /// AICc(with mechanism) - AICc(baseline); negative favours the mechanism. `None` when AICc is
+    /// undefined (n <= k + 1 or a perfect fit).
+    pub delta_aicc: Option<f64>,
+    /// F-test p-value of the joint refit against the baseline (one-sided where the parameter is);
+    /// `None` when there are too few numbers for the test.
+    pub p_value: Option<f64>,
     /// Leave-one-condition-out RMS (%, all outputs) of the baseline, when the design allows it.
     pub heldout_rms_before: Option<f64>,
     /// Leave-one-condition-out RMS (%, all outputs) with the mechanism.
@@ -81,8 +86,8 @@ pub struct MechanismResult {
     pub explained_fraction: f64,
     /// Share of the mechanism's signature the baseline parameters can absorb (linearised).
     pub absorption: f64,
-    /// Score-test p-value from the screen.
-    pub screen_p_value: f64,
+    /// Score-test p-value from the screen; `None` when there are too few numbers for the test.
+    pub screen_p_value: Option<f64>,
     /// Why it was or was not accepted.
     pub reason: String,
 }
@@ -214,8 +219,11 @@ pub struct Report {
     pub baseline_params_before: Vec<NamedValue>,
     /// Baseline parameters after the joint refit.
     pub baseline_params_after: Vec<NamedValue>,
-    /// Mechanisms not testable on this design.
+    /// Mechanisms not testable on this design, or whose screen or refit failed (with the reason).
     pub not_testable: Vec<NotTestable>,
+    /// Fits that did not converge cleanly (iteration cap, damped rerun, nothing fitted), named.
+    #[serde(default)]
+    pub fit_notes: Vec<String>,
     /// Residuals before and after (for plots).
     pub residuals: Vec<ResidualRow>,
 }
@@ -257,7 +265,10 @@ impl Report {
             let params: Vec<String> = m
                 .params
                 .iter()
-                .map(|(k, v)| format!("{k} = {:.4} {} [{:.4}, {:.4}]", v.value, v.unit, v.ci_low, v.ci_high))
+                .map(|(k, v)| match (v.ci_low, v.ci_high) {
+                    (Some(l), Some(h)) => format!("{k} = {:.4} {} [{l:.4}, {h:.4}]", v.value, v.unit),
+                    _ => format!("{k} = {:.4} {} (interval not available: {})", v.value, v.unit, v.ci_note),
+                })
                 .collect();
             let ho = match (m.heldout_rms_before, m.heldout_rms_after) {
                 (Some(b), Some(a)) => format!("held-out RMS {b:.1} % -> {a:.1} %"),
@@ -265,11 +276,11 @@ impl Report {
             };
             let _ = writeln!(
                 s,
-                "  {} {:<20} dAICc {:+7.1}  p = {:.2e}  explains {:3.0} %  {}  {}\n      {}",
+                "  {} {:<20} dAICc {}  p = {}  explains {:3.0} %  {}  {}\n      {}",
                 if m.accepted { "[accepted]" } else { "[        ]" },
                 m.id,
-                m.delta_aicc,
-                m.p_value,
+                m.delta_aicc.map_or_else(|| "not available (n <= k + 1)".to_string(), |v| format!("{v:+7.1}")),
+                m.p_value.map_or_else(|| "not available (too few numbers)".to_string(), |v| format!("{v:.2e}")),
                 100.0 * m.explained_fraction,
                 ho,
                 params.join("; "),
@@ -282,6 +293,9 @@ impl Report {
                 "  not testable here: {}",
                 self.not_testable.iter().map(|n| format!("{} ({})", n.id, n.reason)).collect::<Vec<_>>().join("; ")
             );
+        }
+        for note in &self.fit_notes {
+            let _ = writeln!(s, "  fit note: {note}");
         }
         let row = |r: &OutputRms| {
             let f = |v: Option<f64>| v.map(|x| format!("{x:6.1}")).unwrap_or_else(|| "     -".into());

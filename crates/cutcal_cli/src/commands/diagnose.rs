@@ -261,6 +261,48 @@ mod tests {
     }
 
     #[test]
+    fn table6_report_has_no_nan_or_inf_in_text_or_json() {
+        // Issue 10 item 6: the one-condition Table 6 case used to print `[NaN, NaN]` intervals.
+        let r = diagnose_files(&args(
+            "fixtures/tests/c38.csv",
+            Some("fixtures/diagnose/c38_table6_enhanced_sim.csv"),
+            None,
+            None,
+        ))
+        .unwrap();
+        let text = r.to_text();
+        let json = serde_json::to_string(&r).unwrap();
+        // Whole words only ("information" is fine, "inf" is not). serde_json writes a non-finite f64
+        // as `null`, so the plain f64 fields are checked finite below.
+        let words = |s: &str| s.split(|c: char| !c.is_alphanumeric()).map(str::to_lowercase).collect::<Vec<_>>();
+        for bad in ["nan", "inf", "infinity"] {
+            assert!(!words(&text).iter().any(|w| w == bad), "`{bad}` in text:\n{text}");
+            assert!(!words(&json).iter().any(|w| w == bad), "`{bad}` in JSON:\n{json}");
+        }
+        assert!(r.global_misfit.chi2.is_finite() && r.global_misfit.p_value.is_finite());
+        for m in &r.mismatch {
+            assert!(m.bias_pct.is_finite() && m.p_value.is_finite(), "{}", m.output);
+        }
+        // An interval that is not available says why, in the text and in the JSON.
+        for m in &r.mechanisms {
+            assert!(m.explained_fraction.is_finite() && m.absorption.is_finite(), "{}", m.id);
+            for (name, v) in &m.params {
+                assert!(v.value.is_finite(), "{} {name}", m.id);
+                if v.ci_low.is_none() || v.ci_high.is_none() {
+                    assert!(!v.ci_note.is_empty(), "{} {name}: interval missing without a reason", m.id);
+                }
+            }
+        }
+        // The JSON contract keeps its shape.
+        let value: serde_json::Value = serde_json::from_str(&json).unwrap();
+        for key in
+            ["verdict", "selected", "ambiguous_with", "mechanisms", "mismatch", "fit", "next_test", "explanation"]
+        {
+            assert!(value.get(key).is_some(), "missing `{key}`");
+        }
+    }
+
+    #[test]
     fn residual_plot_has_both_series_per_output() {
         let r = diagnose_files(&args(
             "fixtures/tests/c38.csv",
