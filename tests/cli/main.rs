@@ -5,6 +5,7 @@ mod catalogue;
 mod determinism;
 mod identify;
 mod predict;
+mod recordings;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -35,6 +35,8 @@ pub enum Command {
     Export(commands::export::ExportArgs),
     /// Run a whole project: identification, cards, predictions, report.
     Run(commands::run::RunArgs),
+    /// Reduce raw dynamometer force signals to test rows with their own sd, drift and BUE flags.
+    Recordings(commands::recordings::RecordingsArgs),
 }
 
 /// Runs a parsed command line.
@@ -45,5 +47,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Export(a) => commands::export::run(&a),
         Command::Predict(a) => commands::predict::run(&a),
         Command::Diagnose(a) => commands::diagnose::run(&a),
+        Command::Recordings(a) => commands::recordings::run(&a),
     }
 }

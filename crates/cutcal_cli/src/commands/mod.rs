@@ -6,4 +6,5 @@ pub mod export;
 pub mod identify;
 pub mod identify_oxley;
 pub mod predict;
+pub mod recordings;
 pub mod run;

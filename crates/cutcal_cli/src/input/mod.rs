@@ -6,6 +6,7 @@
 mod fuzz;
 pub mod jc_file;
 pub mod material_file;
+pub mod signal_csv;
 pub mod simulation_csv;
 pub mod tests_csv;
 
