@@ -22,6 +22,8 @@ fn enhanced_json_has_the_documented_keys_and_table4_values() {
         "3",
         "--model",
         "enhanced",
+        "--preset",
+        "paper",
         "--json",
     ]);
     // Shear angle atan(0.075/0.157) = 25.53 deg; tau_max 700.9 MPa (issue 2 / paper Eq 9).
@@ -54,6 +56,8 @@ fn writes_zone_fields_and_a_loadable_jc_file() {
         "fixtures/tests/c38.csv",
         "--model",
         "original",
+        "--preset",
+        "paper",
         "--fields-csv",
         fields.to_str().unwrap(),
         "--out-jc",

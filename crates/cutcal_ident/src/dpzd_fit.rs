@@ -260,6 +260,8 @@ pub struct JcIdentification {
     pub rms_mpa: f64,
     /// Rate term of the fitted law.
     pub rate_term: RateTerm,
+    /// Positions of the fit points (uniform points or quadrature nodes), m.
+    pub fit_x_m: Vec<f64>,
     /// Residual field `f_k - F_k` (unweighted) at the fit points, MPa.
     pub residuals_mpa: Vec<f64>,
     /// Fit statistics (at-bound parameters, covariance, correlation).
@@ -335,6 +337,7 @@ pub fn identify(
         objective_mpa: report.best.ssr.sqrt(),
         rms_mpa: (report.best.ssr / problem.weight_sum.max(f64::MIN_POSITIVE)).sqrt(),
         rate_term: problem.rate_term,
+        fit_x_m: problem.points.iter().map(|p| p.x_m).collect(),
         residuals_mpa: problem.raw_residuals(&report.best.params),
         statistics: stats,
         starts: report.starts,

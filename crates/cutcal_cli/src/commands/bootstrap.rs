@@ -11,7 +11,7 @@ use std::fmt::Write as _;
 
 use anyhow::{Context, Result};
 use cutcal_ident::bootstrap::{bootstrap, BootstrapOptions, BootstrapReport, Measurement, RelativeUncertainty};
-use cutcal_ident::{identify_from_zone, IdentError, JcConstants, MultistartOptions};
+use cutcal_ident::{identify_from_zone_with, IdentError, JcConstants, MultistartOptions};
 use cutcal_model::dpzd::{self, ShearPlaneState};
 use cutcal_model::CuttingTest;
 use serde::Serialize;
@@ -73,7 +73,27 @@ pub fn run_bootstrap(
             .with_chip_thickness(Some(m.chip_thickness_m))?;
         let state = ShearPlaneState::from_test(&t)?;
         let zone = dpzd::solve(&mf.material, &state, &config)?;
-        Ok(identify_from_zone(&zone, settings.points, &bounds, constants, &multistart)?.jc)
+        // The same objective and law as the nominal identification (issue 11 presets).
+        match settings.preset {
+            super::identify::Preset::Paper => Ok(identify_from_zone_with(
+                &zone,
+                settings.points,
+                cutcal_model::RateTerm::Unclamped,
+                &bounds,
+                constants,
+                &multistart,
+            )?
+            .jc),
+            super::identify::Preset::Converged => Ok(cutcal_ident::identify_converged(
+                &zone,
+                &bounds,
+                constants,
+                &multistart,
+                &cutcal_ident::ConvergedOptions::default(),
+            )?
+            .identification
+            .jc),
+        }
     };
     let options = BootstrapOptions { samples: args.bootstrap, seed: settings.multistart.seed, uncertainty };
     let report = bootstrap(&nominal, &options, identify)

@@ -5,9 +5,12 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
-use cutcal_ident::{identify_from_zone, JcBounds, JcConstants, JcIdentification, MultistartOptions};
+use cutcal_ident::{
+    identify_converged, identify_from_zone_with, ConvergedOptions, JcBounds, JcConstants, JcIdentification,
+    MultistartOptions,
+};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState, ZoneSolution};
-use cutcal_model::CuttingTest;
+use cutcal_model::{CuttingTest, RateTerm};
 use serde::Serialize;
 
 use crate::input::material_file::{load_material, MaterialFile};
@@ -22,6 +25,30 @@ pub enum ModelChoice {
     Original,
     /// Thermomechanically enhanced model (paper Sec 3.3-3.5).
     Enhanced,
+}
+
+/// Identification preset (issue 11; docs/identification.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Preset {
+    /// Default: the Eq 15 objective as a zone integral (adaptive Gauss-Kronrod, converged in A,
+    /// B, C), the solvers' JC law (rate term clamped at eps0, as the exported cards).
+    Converged,
+    /// Reproduces Table 4: N = 51 uniform points, h = 0.1 mm, rhoCp = 3.5325 J/(cm^3 K) for the
+    /// original model and the unclamped rate term. Choices made to reproduce Table 4; the paper
+    /// states none of them.
+    Paper,
+}
+
+impl Preset {
+    /// The sentence the report prints about the preset.
+    #[must_use]
+    pub fn note(self) -> &'static str {
+        match self {
+            Preset::Converged => "preset converged: Eq 15 as the zone integral (1/h) int (f-F)^2 dx by adaptive Gauss-Kronrod 7/15, converged in A, B, C; JC rate term clamped at eps0 (the law of the exported cards)",
+            Preset::Paper => "preset paper: N = 51, h = 0.1 mm, rhoCp = 3.5325 J/(cm^3 K), unclamped rate term; choices made to reproduce Table 4 (the paper states none of them); the exported cards clamp the rate term, so this set is not the cards' law",
+        }
+    }
 }
 
 /// Identification method.
@@ -56,12 +83,15 @@ pub struct IdentifyArgs {
     /// DPZD model variant.
     #[arg(long, value_enum, default_value_t = ModelChoice::Enhanced)]
     pub model: ModelChoice,
-    /// Primary shear zone thickness h, mm.
-    #[arg(long, default_value_t = 0.1)]
-    pub h_mm: f64,
-    /// Number of interior fit points N of Eq 15.
-    #[arg(long, default_value_t = 51)]
-    pub points: usize,
+    /// Identification preset: `converged` (default) or `paper` (reproduces Table 4).
+    #[arg(long, value_enum, default_value_t = Preset::Converged)]
+    pub preset: Preset,
+    /// Primary shear zone thickness h, mm (the `paper` preset forces 0.1; default 0.1 otherwise).
+    #[arg(long)]
+    pub h_mm: Option<f64>,
+    /// Number of uniform interior fit points N of Eq 15 (`paper` preset only; it forces 51).
+    #[arg(long)]
+    pub points: Option<usize>,
     /// Strain-rate exponent r of Eq 2 (default: the material's `dpzd.r`).
     #[arg(long)]
     pub r: Option<f64>,
@@ -106,6 +136,14 @@ pub struct DpzdIdentifyReport {
     pub test: String,
     /// Model variant.
     pub model: ModelChoice,
+    /// Identification preset.
+    pub preset: Preset,
+    /// What the preset means (stated in every report).
+    pub preset_note: String,
+    /// Rate term of the identified law.
+    pub rate_term: RateTerm,
+    /// Quadrature nodes of the converged rule (`None` for the paper preset).
+    pub quadrature_nodes: Option<usize>,
     /// Zone thickness, mm.
     pub h_mm: f64,
     /// Exponent r.
@@ -138,7 +176,9 @@ pub struct DpzdIdentifyReport {
     pub at_bounds: Vec<String>,
     /// Free parameters (order of covariance/correlation).
     pub free: Vec<String>,
-    /// Standard errors of the free parameters (A, B in MPa).
+    /// Linearised `s^2 (J^T J)^-1` standard errors of the free parameters (A, B in MPa). Kept for
+    /// the record only: the residuals are deterministic model misfit, not noise, so this is NOT an
+    /// uncertainty (issue 11); the spread comes from the Monte-Carlo propagation.
     pub std_errors: Option<Vec<f64>>,
     /// Correlation matrix of the free parameters.
     pub correlation: Option<Vec<Vec<f64>>>,
@@ -163,6 +203,8 @@ pub struct DpzdIdentifyReport {
 pub struct DpzdSettings {
     /// Model variant.
     pub model: ModelChoice,
+    /// Identification preset.
+    pub preset: Preset,
     /// Zone thickness, m.
     pub h_m: f64,
     /// Exponent r.
@@ -219,14 +261,36 @@ pub fn identify_dpzd(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSetti
         .with_context(|| format!("DPZD {:?} solve of test {}", settings.model, test.id))?;
     let bounds = jc_bounds(mf)?;
     let constants = JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };
-    let id = identify_from_zone(&zone, settings.points, &bounds, constants, &settings.multistart)
-        .with_context(|| format!("JC identification from test {}", test.id))?;
-    let xs: Vec<f64> = zone.interior_points(settings.points)?.iter().map(|p| p.x_m * 1e3).collect();
+    let ctx = || format!("JC identification from test {} (preset {:?})", test.id, settings.preset);
+    let (id, nodes) = match settings.preset {
+        Preset::Paper => (
+            identify_from_zone_with(
+                &zone,
+                settings.points,
+                RateTerm::Unclamped,
+                &bounds,
+                constants,
+                &settings.multistart,
+            )
+            .with_context(ctx)?,
+            None,
+        ),
+        Preset::Converged => {
+            let c = identify_converged(&zone, &bounds, constants, &settings.multistart, &ConvergedOptions::default())
+                .with_context(ctx)?;
+            (c.identification, Some(c.nodes))
+        }
+    };
+    let xs: Vec<f64> = id.fit_x_m.iter().map(|x| x * 1e3).collect();
     let s = &id.statistics;
     let report = DpzdIdentifyReport {
         material: mf.material.name.clone(),
         test: test.id.clone(),
         model: settings.model,
+        preset: settings.preset,
+        preset_note: settings.preset.note().to_string(),
+        rate_term: id.rate_term,
+        quadrature_nodes: nodes,
         h_mm: settings.h_m * 1e3,
         r: settings.r,
         points: settings.points,
@@ -288,15 +352,31 @@ pub fn settings_from_args(args: &IdentifyArgs, mf: &MaterialFile) -> Result<Dpzd
         (None, Some(d)) => d.r,
         (None, None) => bail!("{}: no [dpzd] r given; pass --r", mf.path.display()),
     };
-    let rho_cp = args.rho_cp_original.or(mf.dpzd.as_ref().map(|d| d.rho_cp_original_j_per_cm3_k)).unwrap_or(3.5325);
-    if !(args.h_mm.is_finite() && args.h_mm > 0.0) {
-        bail!("--h-mm must be a positive number of mm, got {}", args.h_mm);
+    let mut rho_cp = args.rho_cp_original.or(mf.dpzd.as_ref().map(|d| d.rho_cp_original_j_per_cm3_k)).unwrap_or(3.5325);
+    let (h_mm, points) = match args.preset {
+        Preset::Paper => {
+            if args.h_mm.is_some_and(|h| h != 0.1) || args.points.is_some_and(|n| n != 51) {
+                bail!("--preset paper fixes h = 0.1 mm and N = 51 (the choices that reproduce Table 4); use --preset converged for other values");
+            }
+            rho_cp = 3.5325;
+            (0.1, 51)
+        }
+        Preset::Converged => {
+            if args.points.is_some() {
+                bail!("--points applies to --preset paper only: the converged preset integrates over the zone");
+            }
+            (args.h_mm.unwrap_or(0.1), 51)
+        }
+    };
+    if !(h_mm.is_finite() && h_mm > 0.0) {
+        bail!("--h-mm must be a positive number of mm, got {h_mm}");
     }
     Ok(DpzdSettings {
         model: args.model,
-        h_m: args.h_mm * 1e-3,
+        preset: args.preset,
+        h_m: h_mm * 1e-3,
         r,
-        points: args.points,
+        points,
         rho_cp_original_j_per_m3_k: rho_cp * 1e6,
         tolerance_c: args.tolerance_c,
         max_iterations: args.max_iterations,
@@ -331,28 +411,35 @@ pub fn render_table(r: &DpzdIdentifyReport) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "cutcal identify: {} test {} ({:?} DPZD, h = {} mm, r = {}, N = {})",
-        r.material, r.test, r.model, r.h_mm, r.r, r.points
+        "cutcal identify: {} test {} ({:?} DPZD, h = {} mm, r = {})",
+        r.material, r.test, r.model, r.h_mm, r.r
     );
+    let _ = writeln!(s, "  {}", r.preset_note);
+    match r.quadrature_nodes {
+        Some(n) => {
+            let _ = writeln!(s, "  quadrature nodes   {n:>10}");
+        }
+        None => {
+            let _ = writeln!(s, "  fit points N       {:>10}", r.points);
+        }
+    }
     let _ = writeln!(s, "  shear angle        {:>10.2} deg", r.shear_angle_deg);
     let _ = writeln!(s, "  tau_max (Eq 9)     {:>10.1} MPa", r.tau_max_mpa);
     let _ = writeln!(s, "  max eff. strain    {:>10.3}", r.max_effective_strain);
     let _ = writeln!(s, "  max eff. rate      {:>10.3e} 1/s", r.max_effective_strain_rate_per_s);
     let _ = writeln!(s, "  T_AB               {:>10.1} degC", r.t_ab_c);
     let _ = writeln!(s, "  T_EF               {:>10.1} degC   ({} fixed-point iterations)", r.t_ef_c, r.iterations);
-    let _ = writeln!(s, "  parameter      value      std.err   note");
-    let se = |name: &str| -> String {
-        match (&r.std_errors, r.free.iter().position(|f| f == name)) {
-            (Some(se), Some(i)) => format!("{:>10.4}", se[i]),
-            _ => format!("{:>10}", "-"),
-        }
-    };
+    let _ = writeln!(s, "  parameter      value   note");
     let note = |name: &str| if r.at_bounds.iter().any(|a| a == name) { "at bound" } else { "" };
-    let _ = writeln!(s, "  A [MPa]     {:>10.2} {}   {}", r.jc.a_mpa, se("a_mpa"), note("a_mpa"));
-    let _ = writeln!(s, "  B [MPa]     {:>10.2} {}   {}", r.jc.b_mpa, se("b_mpa"), note("b_mpa"));
-    let _ = writeln!(s, "  n           {:>10.4} {}   {}", r.jc.n, se("n"), note("n"));
-    let _ = writeln!(s, "  C           {:>10.5} {}   {}", r.jc.c, se("c"), note("c"));
-    let _ = writeln!(s, "  m           {:>10.4} {}   {}", r.jc.m, se("m"), note("m"));
+    let _ = writeln!(s, "  A [MPa]     {:>10.2}   {}", r.jc.a_mpa, note("a_mpa"));
+    let _ = writeln!(s, "  B [MPa]     {:>10.2}   {}", r.jc.b_mpa, note("b_mpa"));
+    let _ = writeln!(s, "  n           {:>10.4}   {}", r.jc.n, note("n"));
+    let _ = writeln!(s, "  C           {:>10.5}   {}", r.jc.c, note("c"));
+    let _ = writeln!(s, "  m           {:>10.4}   {}", r.jc.m, note("m"));
+    let _ = writeln!(
+        s,
+        "  (no std.err: s^2 (J^T J)^-1 of deterministic model residuals has no statistical meaning; use --bootstrap N for a Monte-Carlo spread)"
+    );
     let _ = writeln!(s, "  eps0 = {} 1/s, Tm = {} degC, Tr = {} degC", r.jc.eps0_per_s, r.jc.tm_c, r.jc.tr_c);
     let _ = writeln!(
         s,

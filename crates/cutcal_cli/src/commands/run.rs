@@ -234,6 +234,8 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
             for model in &idc.models {
                 progress(&format!("identifying JC from test {} ({model:?} DPZD, {} starts)", test.id, idc.starts));
                 let settings = DpzdSettings {
+                    // The project file states h and N, so it runs the paper's discrete objective.
+                    preset: super::identify::Preset::Paper,
                     model: *model,
                     h_m: idc.h_mm * 1e-3,
                     r: dp.r,
