@@ -30,7 +30,9 @@ def main(out_dir: Path) -> int:
     tests = cutcal.read_tests(ROOT / "fixtures/tests/c38.csv", as_frame=False)
     test3 = next(t for t in tests if t.test == "3")
 
-    results = {model: cutcal.identify(material, test3, model=model) for model in ("original", "enhanced")}
+    results = {
+        model: cutcal.identify(material, test3, model=model, preset="paper") for model in ("original", "enhanced")
+    }
     print("Table 4, C38 test 3 (paper in brackets; * = at a bound)")
     print(f"{'model':<10}" + "".join(f"{k:>22}" for k in KEYS))
     table = {}

@@ -3,7 +3,7 @@
 //! Python call and `cutcal identify --json` with the same options give the same numbers.
 
 use cutcal_cli::commands::bootstrap::{report_json, run_bootstrap, BootstrapArgs};
-use cutcal_cli::commands::identify::{identify_dpzd, settings_from_args, IdentifyArgs, Method, ModelChoice};
+use cutcal_cli::commands::identify::{identify_dpzd, settings_from_args, IdentifyArgs, Method, ModelChoice, Preset};
 use cutcal_cli::input::material_file::MaterialFile;
 use cutcal_model::{CuttingTest, JcParams};
 
@@ -14,10 +14,13 @@ use crate::errors::{face, FaceError, FaceResult};
 pub struct IdentifyRequest {
     /// `"original"` or `"enhanced"` (paper Sec 3.2 / 3.3-3.5).
     pub model: String,
-    /// Primary shear zone thickness h, mm.
-    pub h_mm: f64,
-    /// Interior fit points N of Eq 15.
-    pub points: usize,
+    /// `"converged"` (default: Eq 15 as a zone integral with the solvers' JC law) or `"paper"`
+    /// (Table 4's choices: N = 51, h = 0.1 mm, unclamped rate term).
+    pub preset: String,
+    /// Primary shear zone thickness h, mm (`None`: the preset's).
+    pub h_mm: Option<f64>,
+    /// Uniform interior fit points N of Eq 15 (`paper` preset only; `None`: the preset's).
+    pub points: Option<usize>,
     /// Exponent r of Eq 2 (default: the material's `dpzd.r`).
     pub r: Option<f64>,
     /// Multistart starts.
@@ -46,8 +49,9 @@ impl Default for IdentifyRequest {
     fn default() -> Self {
         Self {
             model: "enhanced".into(),
-            h_mm: 0.1,
-            points: 51,
+            preset: "converged".into(),
+            h_mm: None,
+            points: None,
             r: None,
             starts: 32,
             seed: 1,
@@ -83,6 +87,14 @@ pub struct IdentifyOutput {
     pub spread_json: Option<String>,
 }
 
+fn preset_choice(name: &str) -> FaceResult<Preset> {
+    match name {
+        "converged" => Ok(Preset::Converged),
+        "paper" => Ok(Preset::Paper),
+        other => Err(face(anyhow::anyhow!("preset must be \"converged\" or \"paper\", got {other:?}"))),
+    }
+}
+
 fn model_choice(name: &str) -> FaceResult<ModelChoice> {
     match name {
         "enhanced" => Ok(ModelChoice::Enhanced),
@@ -100,6 +112,7 @@ fn cli_args(req: &IdentifyRequest) -> FaceResult<IdentifyArgs> {
         method: Method::Dpzd,
         no_chip: false,
         model: model_choice(&req.model)?,
+        preset: preset_choice(&req.preset)?,
         h_mm: req.h_mm,
         points: req.points,
         r: req.r,

@@ -77,7 +77,8 @@ class IdentifyResult:
 
 def read_tests(path: _Path) -> List[CuttingTest]: ...
 def identify(material: Material, test: CuttingTest, model: str = "enhanced", starts: int = 32, seed: int = 1,
-             h_mm: float = 0.1, points: int = 51, r: Optional[float] = None,
+             preset: str = "converged", h_mm: Optional[float] = None, points: Optional[int] = None,
+             r: Optional[float] = None,
              rho_cp_original: Optional[float] = None, tolerance_c: float = 1e-6, max_iterations: int = 50,
              bootstrap: int = 0, force_uncertainty: float = 0.03, chip_uncertainty: float = 0.05,
              bootstrap_starts: int = 4, field_points: int = 201) -> IdentifyResult:

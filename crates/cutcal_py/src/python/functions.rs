@@ -27,7 +27,7 @@ fn read_tests(path: PathBuf) -> PyResult<Vec<PyCuttingTest>> {
 /// identify(material, test, model="enhanced", ...) -> IdentifyResult: JC from one test through
 /// the DPZD zone model (paper Sec 3; enhanced fixed point Sec 3.5) by the Eq 15 fit.
 #[pyfunction]
-#[pyo3(signature = (material, test, model = "enhanced", starts = 32, seed = 1, h_mm = 0.1, points = 51, r = None,
+#[pyo3(signature = (material, test, model = "enhanced", starts = 32, seed = 1, preset = "converged", h_mm = None, points = None, r = None,
     rho_cp_original = None, tolerance_c = 1e-6, max_iterations = 50, bootstrap = 0, force_uncertainty = 0.03,
     chip_uncertainty = 0.05, bootstrap_starts = 4, field_points = 201))]
 #[allow(clippy::too_many_arguments)] // the CLI's options, one keyword each
@@ -38,8 +38,9 @@ fn identify(
     model: &str,
     starts: usize,
     seed: u64,
-    h_mm: f64,
-    points: usize,
+    preset: &str,
+    h_mm: Option<f64>,
+    points: Option<usize>,
     r: Option<f64>,
     rho_cp_original: Option<f64>,
     tolerance_c: f64,
@@ -52,6 +53,7 @@ fn identify(
 ) -> PyResult<PyIdentifyResult> {
     let req = IdentifyRequest {
         model: model.to_string(),
+        preset: preset.to_string(),
         h_mm,
         points,
         r,

@@ -45,10 +45,10 @@ def pick(tests, test_id):
 @pytest.mark.parametrize("model", ["enhanced", "original"])
 def test_identify_c38_test3_equals_the_cli_json(model):
     cli = json.loads(run_cli("identify", "--material", C38, "--tests", C38_TESTS, "--test", "3",
-                             "--model", model, "--json").stdout)
+                             "--model", model, "--preset", "paper", "--json").stdout)
     m = cutcal.Material.from_toml(C38)
     t3 = pick(cutcal.read_tests(C38_TESTS, as_frame=False), "3")
-    res = cutcal.identify(m, t3, model=model)
+    res = cutcal.identify(m, t3, model=model, preset="paper")
     assert_close(res.to_dict(), cli, rel=1e-12)
     assert res.at_bounds == cli["at_bounds"]
     assert math.isclose(res.jc.a_mpa, cli["jc"]["a_mpa"], rel_tol=1e-12)
@@ -66,6 +66,13 @@ def test_identify_with_bootstrap_spread_equals_the_cli():
     assert_close(res.to_dict(), cli)
     assert_close(res.spread, cli["bootstrap"])
     assert cutcal.identify(m, t3, starts=4).spread is None
+
+
+def test_identify_default_preset_equals_the_cli_default():
+    cli = json.loads(run_cli("identify", "--material", C38, "--tests", C38_TESTS, "--test", "3", "--json").stdout)
+    m = cutcal.Material.from_toml(C38)
+    t3 = pick(cutcal.read_tests(C38_TESTS, as_frame=False), "3")
+    assert_close(cutcal.identify(m, t3).to_dict(), cli, rel=1e-12)
 
 
 def test_fields_are_numpy_arrays_with_units_in_their_names_and_match_the_cli_csv(tmp_path):
@@ -222,7 +229,7 @@ def test_the_table4_example_runs_headless_and_matches_the_cli(tmp_path, root):
     table = json.loads((tmp_path / "table4.json").read_text())
     for model in ("original", "enhanced"):
         cli = json.loads(run_cli("identify", "--material", C38, "--tests", C38_TESTS, "--test", "3",
-                                 "--model", model, "--json").stdout)
+                                 "--model", model, "--preset", "paper", "--json").stdout)
         for k, v in table[model]["cutcal"].items():
             assert math.isclose(v, cli["jc"][k], rel_tol=1e-12), (model, k)
         assert table[model]["at_bounds"] == cli["at_bounds"]
