@@ -174,9 +174,9 @@ mod tests {
         let mf = material_from_file(&root.join("fixtures/materials/c38.toml")).unwrap();
         let tests = tests_from_file(&root.join("fixtures/tests/c38.csv")).unwrap();
         let t3 = tests.iter().find(|t| t.id == "3").unwrap();
-        let req = IdentifyRequest { starts: 8, field_points: 11, ..Default::default() };
+        let req = IdentifyRequest { starts: 8, field_points: 11, preset: "paper".into(), ..Default::default() };
         let out = identify(&mf, t3, &req).unwrap();
-        // Paper Table 4, enhanced: A = 589 MPa, C = 0.069 (cutcal within 1.5 %), n and m at bounds.
+        // Paper Table 4 (with the paper preset, which reproduces it), enhanced: A = 589 MPa, C = 0.069 (cutcal within 1.5 %), n and m at bounds.
         assert!((out.jc.a_pa / 589e6 - 1.0).abs() < 0.015, "{}", out.jc.a_pa);
         assert!((out.jc.c / 0.069 - 1.0).abs() < 0.015, "{}", out.jc.c);
         assert_eq!(out.at_bounds, ["n", "m"]);
@@ -188,5 +188,7 @@ mod tests {
         assert!(out.spread_json.is_none());
         let bad = IdentifyRequest { model: "enhancd".into(), ..Default::default() };
         assert!(identify(&mf, t3, &bad).unwrap_err().message.contains("enhancd"));
+        let bad = IdentifyRequest { preset: "papr".into(), ..Default::default() };
+        assert!(identify(&mf, t3, &bad).unwrap_err().message.contains("papr"));
     }
 }
