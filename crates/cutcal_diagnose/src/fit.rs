@@ -10,7 +10,7 @@ use cutcal_model::CuttingTest;
 use nalgebra::{DMatrix, DVector};
 
 use crate::error::DiagnoseError;
-use crate::lite::Hooks;
+use crate::hooks::Hooks;
 use crate::mechanism::{self, Context, MechanismId};
 use crate::simulator::{Prediction, Simulator};
 
@@ -94,7 +94,7 @@ pub fn predict(
     let mut at = p;
     for id in &spec.mechanisms {
         let d = fitted_len(*id);
-        mechanism::correct(*id, &x[at..at + d], tests, ctx, sim, &mut preds);
+        mechanism::correct(*id, &x[at..at + d], &mut preds);
         at += d;
     }
     Ok(preds)

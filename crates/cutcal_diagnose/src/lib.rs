@@ -7,7 +7,11 @@
 
 pub mod error;
 pub mod fit;
-pub mod lite;
+pub mod hooks;
+pub mod noise;
+pub mod null;
+pub mod shadow;
+pub mod spline;
 pub mod stats;
 
 pub use error::DiagnoseError;
@@ -19,4 +23,5 @@ pub mod simulator;
 pub use diagnose::{diagnose, Config};
 pub use mechanism::MechanismId;
 pub use report::{Report, Verdict};
-pub use simulator::{FixedSimulation, LiteSimulator, OxleySimulator, Prediction, Simulator};
+pub use shadow::ShadowSimulation;
+pub use simulator::{FixedSimulation, OxleySimulator, Prediction, Simulator};

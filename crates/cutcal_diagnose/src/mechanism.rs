@@ -1,19 +1,19 @@
 //! The mechanism library: physics a primary-shear-zone model leaves out, each a 1-2 parameter
-//! augmentation with units, bounds, the value that switches it off, its model (in the forward model
-//! through a [`Hook`] when the simulator supports it, otherwise on the outputs), the covariates it
+//! augmentation with units, bounds, the value that switches it off, its model (inside the forward
+//! model through a [`Hook`]; only the dynamometer cross-talk acts on the outputs), the covariates it
 //! needs and its confounders.
 //!
 //! **Source:** design note `discrepancy-discovery.md` Sec 2.2 (mechanisms M1, M3, M4 with the
-//! speed dependence of M5, M6, M7, M9, M10, M11) and its signature matrix Sec 2.3. Output-level
-//! fallbacks of in-model mechanisms use log-sensitivities of the lite Oxley model at AISI 1045,
-//! h = 0.075-0.15 mm, V = 200-240 m/min (checked against the lite model by
-//! `fallback_sensitivities_match_lite_model`).
+//! speed dependence of M5, M6, M7, M9, M10, M11) and its signature matrix Sec 2.3. Every physical
+//! mechanism is evaluated by cutcal's extended Oxley model at each test's own conditions (in Mode A
+//! through the shadow of the external simulation, `crate::shadow`); there are no constant
+//! sensitivities. A simulator that lacks a mechanism's hook makes that mechanism not testable.
 
 use cutcal_model::CuttingTest;
 use serde::{Deserialize, Serialize};
 
-use crate::lite::Hooks;
-use crate::simulator::{Hook, Prediction, Simulator};
+use crate::hooks::{Hook, Hooks};
+use crate::simulator::{Prediction, Simulator};
 
 /// Identifier of a library mechanism (the JSON/CLI spelling is snake_case).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -121,10 +121,12 @@ pub fn info(id: MechanismId) -> MechanismInfo {
         M::EdgePloughing => MechanismInfo {
             id,
             title: "cutting-edge ploughing (edge radius rubbing the machined surface)",
-            source: "Albrecht 1960; Waldorf, DeVor & Kapoor 1998; design note M1",
-            params: vec![p("p_c", "N/mm", 0.0, 80.0, 0.0, 15.0), p("p_t", "N/mm", 0.0, 150.0, 0.0, 30.0)],
-            hook: None,
-            signature: "Fc +, Ft ++ (relative residual grows as 1/h), chip thickness unchanged",
+            source: "Waldorf, DeVor & Kapoor 1998 slip-line ploughing (cutcal_model::oxley::edge); design note M1",
+            // The effective edge radius; with `edge_radius_um` recorded, the per-test radius keeps the
+            // recorded shape: r_i = r_e r_rec,i / mean(r_rec).
+            params: vec![p("r_e", "um", 0.0, 80.0, 0.0, 15.0)],
+            hook: Some(Hook::EdgeRadius),
+            signature: "Fc +, Ft ++ (relative residual grows as r_e/h), chip thickness unchanged",
             covariates: "uncut chip thickness; edge radius helps",
             confounders: &[M::FlankWear, M::SizeEffect, M::ForceCrosstalk],
             separate_by: "add a smaller and a larger feed (ploughing is additive: its relative share grows as 1/h) and measure the edge radius",
@@ -132,9 +134,10 @@ pub fn info(id: MechanismId) -> MechanismInfo {
         M::FlankWear => MechanismInfo {
             id,
             title: "flank wear land contact",
-            source: "Smithey, Kapoor & DeVor 2000; design note M3",
-            params: vec![p("w_c", "N/mm", 0.0, 80.0, 0.0, 10.0), p("w_t", "N/mm", 0.0, 150.0, 0.0, 25.0)],
-            hook: None,
+            source: "Smithey, Kapoor & DeVor 2001 wear-land model (cutcal_model::oxley::edge); design note M3",
+            // VB at the most worn test; VB_i = VB x wear state (measured VB / max, else order / max).
+            params: vec![p("vb", "mm", 0.0, 0.4, 0.0, 0.1)],
+            hook: Some(Hook::WearLand),
             signature: "Fc +, Ft ++ growing with test order / measured VB, chip thickness unchanged",
             covariates: "flank wear VB per test, or the test order",
             confounders: &[M::EdgePloughing],
@@ -223,6 +226,8 @@ pub struct Context {
     /// Reference speed of the speed-dependent friction factor, m/min: the geometric mean of the
     /// test speeds of the whole dataset (kept in folds, so that m_f0 means the same in each).
     pub friction_v_ref_m_min: f64,
+    /// Recorded edge radius per test over the mean recorded radius, when every test records one.
+    pub edge_shape: Option<Vec<f64>>,
 }
 
 impl Context {
@@ -241,7 +246,14 @@ impl Context {
         };
         let ln_v: f64 = tests.iter().map(|t| (t.speed_m_per_s * 60.0).ln()).sum::<f64>();
         let friction_v_ref_m_min = if tests.is_empty() { 1.0 } else { (ln_v / tests.len() as f64).exp() };
-        Self { wear_state, bue_onset_m_min: 0.0, friction_v_ref_m_min }
+        let radii: Vec<Option<f64>> = tests.iter().map(|t| t.edge_radius_m).collect();
+        let edge_shape = if !radii.is_empty() && radii.iter().all(|r| r.is_some_and(|r| r > 0.0)) {
+            let mean = radii.iter().flatten().sum::<f64>() / radii.len() as f64;
+            Some(radii.iter().flatten().map(|r| r / mean).collect())
+        } else {
+            None
+        };
+        Self { wear_state, bue_onset_m_min: 0.0, friction_v_ref_m_min, edge_shape }
     }
 
     /// The context restricted to the tests at `indices` (for leave-one-condition-out folds).
@@ -251,6 +263,7 @@ impl Context {
             wear_state: self.wear_state.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             bue_onset_m_min: self.bue_onset_m_min,
             friction_v_ref_m_min: self.friction_v_ref_m_min,
+            edge_shape: self.edge_shape.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
         }
     }
 }
@@ -269,18 +282,6 @@ pub fn friction_factor(m_f0: f64, p_v: f64, speed_m_min: f64, v_ref_m_min: f64) 
     m_f0 * (speed_m_min / v_ref_m_min).powf(-p_v)
 }
 
-/// Output log-sensitivities `(d ln Fc, d ln Ft, d ln t2)` per unit parameter change used when the
-/// simulator lacks the hook (lite model, AISI 1045, h = 0.075 mm, V = 240 m/min, rake 0 deg).
-fn fallback(hook: Hook) -> [f64; 3] {
-    match hook {
-        Hook::FrictionFactor => [0.33, 1.04, 0.42], // per unit m_f (d ln y / d m_f)
-        Hook::ExtraSoftening => [-0.53, -1.14, -0.37], // per unit k_T
-        Hook::HeatPartition => [0.057, 0.066, 0.006], // per unit k_beta
-        Hook::RakeShift => [-0.0147, -0.047, -0.0126], // per degree of rake
-        Hook::FlowMultiplier => [1.0, 1.0, 0.0],    // per unit ln(multiplier)
-    }
-}
-
 /// Sets the in-model hooks of mechanism `id` with parameters `phi` (only where `sim` supports them).
 pub fn set_hooks(
     id: MechanismId,
@@ -294,8 +295,15 @@ pub fn set_hooks(
     if !sim.supports(hook) {
         return;
     }
-    for (t, h) in tests.iter().zip(hooks.iter_mut()) {
+    for (i, (t, h)) in tests.iter().zip(hooks.iter_mut()).enumerate() {
         match id {
+            MechanismId::EdgePloughing => {
+                let shape = ctx.edge_shape.as_ref().map_or(1.0, |s| s[i]);
+                h.edge_radius_m += phi[0] * 1e-6 * shape;
+            }
+            MechanismId::FlankWear => {
+                h.wear_land_m += phi[0] * 1e-3 * ctx.wear_state.as_ref().map_or(0.0, |w| w[i]);
+            }
             MechanismId::ToolChipFriction => {
                 h.friction_factor *= friction_factor(phi[0], phi[1], t.speed_m_per_s * 60.0, ctx.friction_v_ref_m_min)
             }
@@ -315,63 +323,12 @@ fn size_factor(l_um: f64, t: &CuttingTest) -> f64 {
     (1.0 + l_um * 1e-6 / t.uncut_chip_thickness_m).sqrt()
 }
 
-/// Applies the output-level part of mechanism `id` to `preds` (additive mechanisms always; in-model
-/// mechanisms only when `sim` lacks their hook).
-pub fn correct(
-    id: MechanismId,
-    phi: &[f64],
-    tests: &[CuttingTest],
-    ctx: &Context,
-    sim: &dyn Simulator,
-    preds: &mut [Prediction],
-) {
-    let inf = info(id);
-    if let Some(hook) = inf.hook {
-        if sim.supports(hook) {
-            return;
-        }
-        let s = fallback(hook);
-        for (i, (t, p)) in tests.iter().zip(preds.iter_mut()).enumerate() {
-            let x = match id {
-                MechanismId::ToolChipFriction => {
-                    friction_factor(phi[0], phi[1], t.speed_m_per_s * 60.0, ctx.friction_v_ref_m_min) - 1.0
-                }
-                MechanismId::ThermalSoftening => {
-                    // Scale with the shear-zone temperature rise when known (reference rise 345 K,
-                    // the lite model's at the sensitivity condition).
-                    let rise = p.t_ab_c.map(|t| ((t - 20.0) / 345.0).max(0.0)).unwrap_or(1.0);
-                    phi[0] * rise
-                }
-                MechanismId::HeatPartition => {
-                    // Scale with beta when known (reference beta 0.18 at the sensitivity condition).
-                    (phi[0] - 1.0) * p.beta.map(|b| b / 0.18).unwrap_or(1.0)
-                }
-                MechanismId::SizeEffect => size_factor(phi[0], t).ln(),
-                MechanismId::BuiltUpEdge => phi[0] * bue_indicator(t.speed_m_per_s * 60.0, ctx.bue_onset_m_min),
-                _ => 0.0,
-            };
-            let _ = i;
-            p.fc_n_per_m *= (s[0] * x).exp();
-            p.ft_n_per_m *= (s[1] * x).exp();
-            p.chip_m *= (s[2] * x).exp();
-        }
-        return;
-    }
-    for (i, p) in preds.iter_mut().enumerate() {
-        match id {
-            MechanismId::EdgePloughing => {
-                p.fc_n_per_m += phi[0] * 1e3;
-                p.ft_n_per_m += phi[1] * 1e3;
-            }
-            MechanismId::FlankWear => {
-                let w = ctx.wear_state.as_ref().map(|w| w[i]).unwrap_or(0.0);
-                p.fc_n_per_m += phi[0] * 1e3 * w;
-                p.ft_n_per_m += phi[1] * 1e3 * w;
-            }
-            MechanismId::ForceCrosstalk => {
-                p.ft_n_per_m = (p.ft_n_per_m + phi[0] * p.fc_n_per_m).max(1.0);
-            }
-            _ => {}
+/// Applies the output-level part of mechanism `id` to `preds`: only the dynamometer cross-talk
+/// (M11, ISO 21612) acts on the recorded outputs; every other mechanism is inside the model.
+pub fn correct(id: MechanismId, phi: &[f64], preds: &mut [Prediction]) {
+    if id == MechanismId::ForceCrosstalk {
+        for p in preds.iter_mut() {
+            p.ft_n_per_m = (p.ft_n_per_m + phi[0] * p.fc_n_per_m).max(1.0);
         }
     }
 }
@@ -379,7 +336,12 @@ pub fn correct(
 /// Whether mechanism `id` can be tested on these tests (covariates present and varying).
 ///
 /// Returns `Err(reason)` when it cannot.
-pub fn testable(id: MechanismId, tests: &[CuttingTest], ctx: &Context, has_beta: bool) -> Result<(), String> {
+pub fn testable(id: MechanismId, tests: &[CuttingTest], ctx: &Context, sim: &dyn Simulator) -> Result<(), String> {
+    if let Some(hook) = info(id).hook {
+        if !sim.supports(hook) {
+            return Err(format!("the simulation cannot switch it on (no {hook:?} hook; the shadow model was not built)"));
+        }
+    }
     let distinct = |f: &dyn Fn(&CuttingTest) -> f64| {
         let mut v: Vec<f64> = tests.iter().map(f).collect();
         v.sort_by(f64::total_cmp);
@@ -395,9 +357,6 @@ pub fn testable(id: MechanismId, tests: &[CuttingTest], ctx: &Context, has_beta:
             Err("needs at least two uncut chip thicknesses".into())
         }
         MechanismId::BuiltUpEdge if distinct(&|t| t.speed_m_per_s) < 3 => Err("needs at least three speeds".into()),
-        MechanismId::HeatPartition if !has_beta => {
-            Err("needs the heat partition of the simulation (thermal properties)".into())
-        }
         _ => Ok(()),
     }
 }
@@ -415,36 +374,6 @@ pub fn bue_onsets(tests: &[CuttingTest]) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lite::{solve, tests::aisi1045};
-
-    #[test]
-    fn fallback_sensitivities_match_lite_model() {
-        // The constants of `fallback` were read off the lite model at this condition; recompute them
-        // by forward differences and require agreement to 15 %.
-        let (jc, k) = aisi1045();
-        let t = CuttingTest::new("s", 4.0, 0.075e-3, 1.6e-3, 0.0).unwrap();
-        let b = solve(&t, &jc, &k, &Hooks::NEUTRAL).unwrap();
-        let d = |h: Hooks, step: f64| {
-            let x = solve(&t, &jc, &k, &h).unwrap();
-            [
-                (x.fc_n_per_m / b.fc_n_per_m).ln() / step,
-                (x.ft_n_per_m / b.ft_n_per_m).ln() / step,
-                (x.chip_m / b.chip_m).ln() / step,
-            ]
-        };
-        let cases = [
-            (Hook::FrictionFactor, d(Hooks { friction_factor: 0.99, ..Hooks::NEUTRAL }, -0.01)),
-            (Hook::ExtraSoftening, d(Hooks { extra_softening: 0.01, ..Hooks::NEUTRAL }, 0.01)),
-            (Hook::HeatPartition, d(Hooks { heat_partition_scale: 1.01, ..Hooks::NEUTRAL }, 0.01)),
-            (Hook::RakeShift, d(Hooks { rake_shift_rad: 0.1f64.to_radians(), ..Hooks::NEUTRAL }, 0.1)),
-        ];
-        for (hook, got) in cases {
-            let want = fallback(hook);
-            for j in 0..3 {
-                assert!((got[j] - want[j]).abs() <= 0.15 * want[j].abs() + 2e-3, "{hook:?} {j}: {got:?} vs {want:?}");
-            }
-        }
-    }
 
     #[test]
     fn ids_round_trip() {
@@ -470,22 +399,48 @@ mod tests {
     }
 
     #[test]
-    fn speed_exponent_moves_the_lite_model_in_the_m5_direction() {
+    fn speed_exponent_moves_the_oxley_model_in_the_m5_direction() {
         // Note Sec 2.3, M5: with p_v > 0 the feed force falls with ln V relative to constant m_f.
-        let (jc, k) = aisi1045();
+        let m = cutcal_model::reference::aisi1045_lalwani2009();
+        let jc = crate::simulator::tests::jaspers();
         let tests = [
             CuttingTest::new("lo", 100.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap(),
             CuttingTest::new("hi", 400.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap(),
         ];
         let ctx = Context::of(&tests);
-        let sim = crate::simulator::LiteSimulator::with_constants(jc, k, &crate::simulator::JcBox::wide(), true);
+        let sim = crate::simulator::OxleySimulator::new(&m, jc, &crate::simulator::JcBox::wide(), false);
         let ratio = |p_v: f64| {
             let mut hooks = [Hooks::NEUTRAL; 2];
             set_hooks(MechanismId::ToolChipFriction, &[0.7, p_v], &tests, &ctx, &sim, &mut hooks);
-            let r: Vec<f64> = tests.iter().zip(&hooks).map(|(t, h)| solve(t, &jc, &k, h).unwrap().ft_n_per_m).collect();
-            r[1] / r[0]
+            let r = sim.simulate(&tests, &[], &hooks).unwrap();
+            r[1].ft_n_per_m / r[0].ft_n_per_m
         };
         assert!(ratio(0.3) < 0.97 * ratio(0.0), "{} vs {}", ratio(0.3), ratio(0.0));
+    }
+
+    #[test]
+    fn recorded_edge_radii_keep_their_shape_and_wear_follows_the_order() {
+        let mut a = CuttingTest::new("a", 2.0, 0.1e-3, 1e-3, 0.0).unwrap();
+        let mut b = CuttingTest::new("b", 2.0, 0.2e-3, 1e-3, 0.0).unwrap();
+        a.edge_radius_m = Some(10e-6);
+        b.edge_radius_m = Some(30e-6);
+        a.order = Some(1);
+        b.order = Some(4);
+        let tests = [a, b];
+        let ctx = Context::of(&tests);
+        let sim = crate::simulator::OxleySimulator::new(
+            &cutcal_model::reference::aisi1045_lalwani2009(),
+            crate::simulator::tests::jaspers(),
+            &crate::simulator::JcBox::wide(),
+            false,
+        );
+        let mut hooks = [Hooks::NEUTRAL; 2];
+        // Mean recorded radius 20 um; r_e = 40 um doubles each: 20 and 60 um.
+        set_hooks(MechanismId::EdgePloughing, &[40.0], &tests, &ctx, &sim, &mut hooks);
+        assert!((hooks[0].edge_radius_m - 20e-6).abs() < 1e-12 && (hooks[1].edge_radius_m - 60e-6).abs() < 1e-12);
+        // Order 1 and 4 of max 4: VB 0.05 and 0.2 mm for vb = 0.2 mm.
+        set_hooks(MechanismId::FlankWear, &[0.2], &tests, &ctx, &sim, &mut hooks);
+        assert!((hooks[0].wear_land_m - 0.05e-3).abs() < 1e-12 && (hooks[1].wear_land_m - 0.2e-3).abs() < 1e-12);
     }
 
     #[test]

@@ -165,7 +165,7 @@ pub struct GlobalMisfit {
 pub struct Thresholds {
     /// Family-wise false-positive rate aimed at.
     pub family_alpha: f64,
-    /// Per-mechanism significance level (Bonferroni over the mechanisms tested).
+    /// Per-mechanism significance level (calibrated on the null replicates; Bonferroni without them).
     pub per_mechanism_alpha: f64,
     /// Number of mechanisms tested in the first round.
     pub mechanisms_tested: usize,
@@ -226,6 +226,15 @@ pub struct Report {
     pub fit_notes: Vec<String>,
     /// Residuals before and after (for plots).
     pub residuals: Vec<ResidualRow>,
+    /// Where the noise level of Fc, Ft, t2 came from (per-row sd, repeats, or the default).
+    #[serde(default)]
+    pub noise_source: Vec<String>,
+    /// How the significance level was set (calibrated null or Bonferroni).
+    #[serde(default)]
+    pub calibration: String,
+    /// Notes about the simulator (Mode A: the shadow fit of the external simulation).
+    #[serde(default)]
+    pub simulator_notes: Vec<String>,
 }
 
 impl Report {
@@ -241,9 +250,15 @@ impl Report {
         let _ = writeln!(s, "Verdict: {}", self.verdict.as_str());
         let _ = writeln!(
             s,
-            "Global misfit of the baseline: chi2 = {:.1} on {} dof (p = {:.2e}, assumed noise Fc {:.0} %, Ft {:.0} %, tc {:.0} %)",
+            "Global misfit of the baseline: chi2 = {:.1} on {} dof (p = {:.2e}, noise Fc {:.1} %, Ft {:.1} %, tc {:.1} %)",
             self.global_misfit.chi2, self.global_misfit.dof, self.global_misfit.p_value, self.noise_pct[0], self.noise_pct[1], self.noise_pct[2]
         );
+        for (o, src) in ["Fc", "Ft", "tc"].iter().zip(&self.noise_source) {
+            let _ = writeln!(s, "  noise of {o}: {src}");
+        }
+        for n in &self.simulator_notes {
+            let _ = writeln!(s, "Simulator: {n}");
+        }
         let _ = writeln!(s, "\nWhere the model misses (measured - model):");
         for m in &self.mismatch {
             let _ = writeln!(
@@ -258,8 +273,8 @@ impl Report {
         }
         let _ = writeln!(
             s,
-            "\nMechanisms refitted jointly with the baseline (threshold p < {:.4} per mechanism):",
-            self.thresholds.per_mechanism_alpha
+            "\nMechanisms refitted jointly with the baseline (threshold p < {:.2e} per mechanism; {}):",
+            self.thresholds.per_mechanism_alpha, self.calibration
         );
         for m in &self.mechanisms {
             let params: Vec<String> = m

@@ -3,13 +3,16 @@
 //! - [`FixedSimulation`] (Mode A): an external simulation (e.g. an FE run) given per test; its only
 //!   baseline parameter is a common force scale (the stress level the external JC set may have
 //!   wrong), used when there are at least two conditions.
-//! - [`LiteSimulator`] (Mode B before/without the full Oxley model): the [`crate::lite`] model with
-//!   JC parameters as the baseline (free with weak priors, or fixed).
+//!   It supports no hook; Mode A uses it only when the shadow of [`crate::shadow`] cannot be built.
+//! - [`OxleySimulator`] (Mode B): cutcal's extended Oxley model with JC as the baseline and every
+//!   mechanism hook inside the model ([`oxley_with_hooks`]).
 
 use cutcal_model::{CuttingTest, JcParams, Material};
 
+use cutcal_model::oxley::{self, CuttingConditions, EdgePloughing, FlankWear, OxleyOptions, Physics};
+
 use crate::error::DiagnoseError;
-use crate::lite::{self, Hooks, LiteConstants};
+pub use crate::hooks::{Hook, Hooks};
 
 /// Model outputs for one test.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -26,21 +29,6 @@ pub struct Prediction {
     pub t_int_c: Option<f64>,
     /// Boothroyd heat partition into the work, when known.
     pub beta: Option<f64>,
-}
-
-/// In-model hooks a simulator may support; unsupported ones fall back to output-level corrections.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Hook {
-    /// Interface friction factor m_f.
-    FrictionFactor,
-    /// Heat-partition scale.
-    HeatPartition,
-    /// Extra thermomechanical softening.
-    ExtraSoftening,
-    /// Rake-angle shift per test.
-    RakeShift,
-    /// Flow-stress multiplier per test.
-    FlowMultiplier,
 }
 
 /// One baseline parameter: name with unit, start, bounds, weak prior width (`None`: no prior).
@@ -151,14 +139,6 @@ impl Simulator for FixedSimulation {
     }
 }
 
-/// Mode B: the lite Oxley model with JC as the baseline.
-#[derive(Debug, Clone)]
-pub struct LiteSimulator {
-    nominal: JcParams,
-    constants: LiteConstants,
-    params: Vec<ParamSpec>,
-}
-
 /// Bounds of the free JC parameters `[A MPa, B MPa, n, C, m]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JcBox {
@@ -198,37 +178,33 @@ pub fn jc_param_specs(nominal: &JcParams, bx: &JcBox) -> Vec<ParamSpec> {
     ]
 }
 
-impl LiteSimulator {
-    /// JC free (weak priors at `nominal`, bounds `bx`) when `free` is true, fixed otherwise.
+/// Mode B with cutcal's full forward model: the extended Oxley model of `cutcal_model::oxley`
+/// (Lalwani et al. 2009) with JC as the baseline; every mechanism hook is inside the model
+/// ([`oxley_with_hooks`]).
+#[derive(Debug, Clone)]
+pub struct OxleySimulator {
+    material: Material,
+    nominal: JcParams,
+    params: Vec<ParamSpec>,
+}
+
+impl OxleySimulator {
+    /// JC free (weak priors at `nominal`, bounds `bx`) when `free`, fixed otherwise.
     #[must_use]
     pub fn new(material: &Material, nominal: JcParams, bx: &JcBox, free: bool) -> Self {
         let params = if free { jc_param_specs(&nominal, bx) } else { Vec::new() };
-        Self { nominal, constants: LiteConstants::oxley_defaults(material), params }
-    }
-
-    /// With explicit lite constants (the benchmark uses this to perturb nuisances).
-    #[must_use]
-    pub fn with_constants(nominal: JcParams, constants: LiteConstants, bx: &JcBox, free: bool) -> Self {
-        let params = if free { jc_param_specs(&nominal, bx) } else { Vec::new() };
-        Self { nominal, constants, params }
+        Self { material: material.clone(), nominal, params }
     }
 
     fn jc(&self, theta: &[f64]) -> JcParams {
         if theta.len() < 5 {
             return self.nominal;
         }
-        JcParams {
-            a_pa: theta[0].exp() * 1e6,
-            b_pa: theta[1].exp() * 1e6,
-            n: theta[2],
-            c: theta[3],
-            m: theta[4],
-            ..self.nominal
-        }
+        JcParams { a_pa: theta[0].exp() * 1e6, b_pa: theta[1].exp() * 1e6, n: theta[2], c: theta[3], m: theta[4], ..self.nominal }
     }
 }
 
-impl Simulator for LiteSimulator {
+impl Simulator for OxleySimulator {
     fn baseline_params(&self) -> &[ParamSpec] {
         &self.params
     }
@@ -245,122 +221,95 @@ impl Simulator for LiteSimulator {
         hooks: &[Hooks],
     ) -> Result<Vec<Prediction>, DiagnoseError> {
         let jc = self.jc(theta);
-        tests
-            .iter()
-            .zip(hooks)
-            .map(|(t, h)| {
-                let s = lite::solve(t, &jc, &self.constants, h)?;
-                Ok(Prediction {
-                    fc_n_per_m: s.fc_n_per_m,
-                    ft_n_per_m: s.ft_n_per_m,
-                    chip_m: s.chip_m,
-                    t_ab_c: Some(s.t_ab_c),
-                    t_int_c: Some(s.t_int_c),
-                    beta: Some(s.beta),
-                })
-            })
-            .collect()
+        let options = OxleyOptions::wide();
+        tests.iter().zip(hooks).map(|(t, h)| oxley_with_hooks(&self.material, &jc, t, h, &options)).collect()
     }
     fn jc_at(&self, theta: &[f64]) -> Option<JcParams> {
         Some(self.jc(theta))
     }
 }
 
-/// Mode B with cutcal's full forward model: the extended Oxley model of `cutcal_model::oxley`
-/// (Lalwani et al. 2009) with JC as the baseline.
+/// One prediction of cutcal's extended Oxley model (Oxley 1989; Lalwani et al. 2009) with the
+/// mechanism hooks `h` switched on inside it:
+/// - flow-stress multiplier: A and B of the JC law scaled (Eq 16 of the paper, both zones);
+/// - rake shift: the effective rake angle;
+/// - friction factor, heat-partition scale, extra softening: `oxley::Physics` (M4, M6, M7; the
+///   softening hook evaluates the flow stress at `T_w + (1 + k)(T - T_w)`);
+/// - edge radius: Waldorf, DeVor & Kapoor 1998 ploughing (`EdgePloughing::waldorf1998`);
+/// - wear land: Smithey, Kapoor & DeVor 2001 (`FlankWear::smithey2001`).
 ///
-/// In-model hooks used: interface friction factor (M4), heat-partition scale (M6) and the rake
-/// angle (built-up edge). Its thermal-softening hook can only weaken softening (scale <= 1), so
-/// extra softening (M7) and the flow-stress multiplier (M10) fall back to output-level corrections;
-/// edge and flank forces are added on the outputs by the mechanism layer.
-#[derive(Debug, Clone)]
-pub struct OxleySimulator {
-    material: Material,
-    nominal: JcParams,
-    params: Vec<ParamSpec>,
+/// Returns an error naming the test when a hook value is out of the model's range or the model
+/// has no solution.
+pub fn oxley_with_hooks(
+    material: &Material,
+    jc: &JcParams,
+    t: &CuttingTest,
+    h: &Hooks,
+    options: &OxleyOptions,
+) -> Result<Prediction, DiagnoseError> {
+    let err = |e| DiagnoseError::Model { test: t.id.clone(), source: e };
+    let cond = CuttingConditions::new(
+        t.speed_m_per_s,
+        t.uncut_chip_thickness_m,
+        t.width_m,
+        t.rake_rad + h.rake_shift_rad,
+        material.room_c,
+    )
+    .map_err(err)?;
+    let jc = JcParams { a_pa: jc.a_pa * h.flow_multiplier, b_pa: jc.b_pa * h.flow_multiplier, ..*jc };
+    let physics = Physics {
+        interface_friction_factor: h.friction_factor.clamp(1e-3, 1.0),
+        heat_partition_scale: h.heat_partition_scale.clamp(1e-3, 3.0),
+        thermal_softening_scale: (1.0 + h.extra_softening).clamp(0.0, 3.0),
+        edge_ploughing: if h.edge_radius_m > 0.0 {
+            Some(EdgePloughing::waldorf1998(h.edge_radius_m.min(0.5e-3)).map_err(err)?)
+        } else {
+            None
+        },
+        flank_wear: if h.wear_land_m > 0.0 {
+            Some(FlankWear::smithey2001(h.wear_land_m.min(2e-3)).map_err(err)?)
+        } else {
+            None
+        },
+        ..Physics::baseline()
+    };
+    let p = oxley::predict(material, &jc, &cond, options, &physics).map_err(err)?;
+    Ok(Prediction {
+        fc_n_per_m: p.cutting_force_n_per_m,
+        ft_n_per_m: p.feed_force_n_per_m,
+        chip_m: p.chip_thickness_m,
+        t_ab_c: Some(p.temperature_ab_c),
+        t_int_c: Some(p.temperature_int_c),
+        beta: Some(p.heat_partition),
+    })
 }
 
-impl OxleySimulator {
-    /// JC free (weak priors at `nominal`, bounds `bx`) when `free`, fixed otherwise.
-    #[must_use]
-    pub fn new(material: &Material, nominal: JcParams, bx: &JcBox, free: bool) -> Self {
-        let params = if free { jc_param_specs(&nominal, bx) } else { Vec::new() };
-        Self { material: material.clone(), nominal, params }
-    }
-}
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
 
-impl Simulator for OxleySimulator {
-    fn baseline_params(&self) -> &[ParamSpec] {
-        &self.params
+    /// AISI 1045, Jaspers & Dautzenberg 2002 (fixtures/jc/aisi1045_jaspers2002.toml).
+    pub(crate) fn jaspers() -> JcParams {
+        JcParams::new(553.1e6, 600.8e6, 0.234, 0.0134, 1.0, 1.0, 1460.0, 25.0).unwrap()
     }
-    fn supports(&self, hook: Hook) -> bool {
-        matches!(hook, Hook::FrictionFactor | Hook::HeatPartition | Hook::RakeShift)
-    }
-    fn can_extrapolate(&self) -> bool {
-        true
-    }
-    fn simulate(
-        &self,
-        tests: &[CuttingTest],
-        theta: &[f64],
-        hooks: &[Hooks],
-    ) -> Result<Vec<Prediction>, DiagnoseError> {
-        use cutcal_model::oxley::{self, CuttingConditions, OxleyOptions, Physics};
-        let jc = if theta.len() >= 5 {
-            JcParams {
-                a_pa: theta[0].exp() * 1e6,
-                b_pa: theta[1].exp() * 1e6,
-                n: theta[2],
-                c: theta[3],
-                m: theta[4],
-                ..self.nominal
-            }
-        } else {
-            self.nominal
-        };
-        let options = OxleyOptions::wide();
-        tests
-            .iter()
-            .zip(hooks)
-            .map(|(t, h)| {
-                let err = |e| DiagnoseError::Model { test: t.id.clone(), source: e };
-                let cond = CuttingConditions::new(
-                    t.speed_m_per_s,
-                    t.uncut_chip_thickness_m,
-                    t.width_m,
-                    t.rake_rad + h.rake_shift_rad,
-                    self.material.room_c,
-                )
-                .map_err(err)?;
-                let physics = Physics {
-                    interface_friction_factor: h.friction_factor.clamp(1e-3, 1.0),
-                    heat_partition_scale: h.heat_partition_scale.clamp(1e-3, 3.0),
-                    ..Physics::baseline()
-                };
-                let p = oxley::predict(&self.material, &jc, &cond, &options, &physics).map_err(err)?;
-                Ok(Prediction {
-                    fc_n_per_m: p.cutting_force_n_per_m + h.edge_fc_n_per_m,
-                    ft_n_per_m: p.feed_force_n_per_m + h.edge_ft_n_per_m,
-                    chip_m: p.chip_thickness_m,
-                    t_ab_c: Some(p.temperature_ab_c),
-                    t_int_c: Some(p.temperature_int_c),
-                    beta: None,
-                })
-            })
-            .collect()
-    }
-    fn jc_at(&self, theta: &[f64]) -> Option<JcParams> {
-        if theta.len() >= 5 {
-            Some(JcParams {
-                a_pa: theta[0].exp() * 1e6,
-                b_pa: theta[1].exp() * 1e6,
-                n: theta[2],
-                c: theta[3],
-                m: theta[4],
-                ..self.nominal
-            })
-        } else {
-            Some(self.nominal)
-        }
+
+    #[test]
+    fn hooks_move_the_full_model_in_their_documented_directions() {
+        // Independent expectations from the physics, not from the code: a sharper-than-sticking
+        // interface lowers Ft; ploughing and a wear land add force; a larger rake lowers Fc; a flow
+        // multiplier of 1.1 raises Fc by close to 10 %.
+        let m = cutcal_model::reference::aisi1045_lalwani2009();
+        let t = CuttingTest::new("1", 200.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap();
+        let o = OxleyOptions::wide();
+        let at = |h: Hooks| oxley_with_hooks(&m, &jaspers(), &t, &h, &o).unwrap();
+        let b = at(Hooks::NEUTRAL);
+        assert!(at(Hooks { friction_factor: 0.7, ..Hooks::NEUTRAL }).ft_n_per_m < 0.9 * b.ft_n_per_m);
+        let e = at(Hooks { edge_radius_m: 20e-6, ..Hooks::NEUTRAL });
+        assert!(e.fc_n_per_m > b.fc_n_per_m && e.ft_n_per_m - b.ft_n_per_m > e.fc_n_per_m - b.fc_n_per_m);
+        assert!(at(Hooks { wear_land_m: 0.2e-3, ..Hooks::NEUTRAL }).ft_n_per_m > 1.1 * b.ft_n_per_m);
+        assert!(at(Hooks { rake_shift_rad: 0.1, ..Hooks::NEUTRAL }).fc_n_per_m < b.fc_n_per_m);
+        let f = at(Hooks { flow_multiplier: 1.1, ..Hooks::NEUTRAL }).fc_n_per_m / b.fc_n_per_m;
+        assert!((1.02..1.10).contains(&f), "{f}");
+        assert!(at(Hooks { extra_softening: 0.5, ..Hooks::NEUTRAL }).fc_n_per_m < b.fc_n_per_m);
     }
 }

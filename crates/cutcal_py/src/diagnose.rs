@@ -20,7 +20,7 @@ pub struct DiagnoseRequest {
     pub jc: Option<PathBuf>,
     /// Refit JC even though `jc` is given.
     pub free_jc: bool,
-    /// `"oxley"` (default) or `"lite"`.
+    /// `"oxley"` (default and only value: the project's one forward model).
     pub model: Option<String>,
 }
 
@@ -28,8 +28,7 @@ pub struct DiagnoseRequest {
 pub fn diagnose_json(req: &DiagnoseRequest) -> FaceResult<String> {
     let model = match req.model.as_deref().unwrap_or("oxley") {
         "oxley" => ForwardModel::Oxley,
-        "lite" => ForwardModel::Lite,
-        other => return Err(face(anyhow::anyhow!("model must be \"oxley\" or \"lite\", got {other:?}"))),
+        other => return Err(face(anyhow::anyhow!("model must be \"oxley\", got {other:?}"))),
     };
     let args = DiagnoseArgs {
         recordings: req.recordings.clone(),

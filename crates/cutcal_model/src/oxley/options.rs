@@ -236,7 +236,8 @@ pub struct Physics {
     /// Scale on Boothroyd's heat partition beta (M6); 1 = Oxley. The scaled beta is clamped to [0, 1].
     pub heat_partition_scale: f64,
     /// Thermal-softening coupling kappa_T (M7): the flow stress is evaluated at
-    /// `T_w + kappa_T (T - T_w)`; 1 = coupled (Oxley), 0 = thermal softening off.
+    /// `T_w + kappa_T (T - T_w)`; 1 = coupled (Oxley), 0 = thermal softening off, above 1 = softening
+    /// stronger than the JC law's (Ertuerk, Malakizadi & Larsson 2020 report such coupling), at most 3.
     pub thermal_softening_scale: f64,
     /// Flank-wear land forces (M3; Smithey, Kapoor & DeVor 2001), scaled by k_AB, or `None`.
     pub flank_wear: Option<FlankWear>,
@@ -286,8 +287,8 @@ impl Physics {
         check_range("interface_friction_factor", self.interface_friction_factor, 0.0, 1.0, "0 < m_f <= 1")?;
         check_range("heat_partition_scale", self.heat_partition_scale, 0.0, 3.0, "0 < kappa_beta <= 3")?;
         let s = self.thermal_softening_scale;
-        if !(s.is_finite() && (0.0..=1.0).contains(&s)) {
-            return Err(ModelError::out_of_range("thermal_softening_scale", s, "0 <= kappa_T <= 1"));
+        if !(s.is_finite() && (0.0..=3.0).contains(&s)) {
+            return Err(ModelError::out_of_range("thermal_softening_scale", s, "0 <= kappa_T <= 3"));
         }
         if let Some(e) = self.edge_ploughing {
             e.validate()?;
@@ -325,7 +326,9 @@ mod tests {
         p.interface_friction_factor = 0.0;
         assert!(p.validate().is_err());
         p = Physics::baseline();
-        p.thermal_softening_scale = 1.5;
+        p.thermal_softening_scale = 3.5;
         assert!(p.validate().is_err());
+        p.thermal_softening_scale = 1.5;
+        p.validate().unwrap();
     }
 }

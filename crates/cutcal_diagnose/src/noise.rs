@@ -1,0 +1,104 @@
+//! The noise model of a diagnosis: relative standard deviations of Fc, Ft and t2, taken from the
+//! data when they say it (issue 13, item 2; issue 10, item 4), else the stated defaults.
+//!
+//! Order of preference per output: (1) the per-row uncertainty columns (`*_sd_*`, e.g. written by
+//! `cutcal recordings`), their median relative value when at least half the measured rows state
+//! one; (2) the pooled spread of `ln y` over repeated tests at one condition, when that gives at
+//! least 3 degrees of freedom; (3) the design note's defaults (3 %, 5 %, 5 %). A floor of 0.5 %
+//! keeps a lucky repeat from claiming a precision no dynamometer has.
+
+use cutcal_model::CuttingTest;
+
+/// Lowest relative noise accepted from the data.
+const FLOOR: f64 = 0.005;
+
+/// Relative noise per output and where each came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NoiseModel {
+    /// Relative sd of Fc, Ft, t2.
+    pub sd: [f64; 3],
+    /// Source of each, e.g. `repeated conditions (df = 4)`.
+    pub source: [String; 3],
+}
+
+/// The noise of `tests` grouped by condition in `groups`, with `default` where the data are silent.
+#[must_use]
+pub fn from_data(tests: &[CuttingTest], groups: &[Vec<usize>], default: [f64; 3]) -> NoiseModel {
+    let value = |t: &CuttingTest, j: usize| {
+        let m = t.measured;
+        [m.cutting_force_n_per_m, m.feed_force_n_per_m, m.chip_thickness_m][j].filter(|v| *v > 0.0)
+    };
+    let sd_of = |t: &CuttingTest, j: usize| {
+        let s = t.measured.sd;
+        [s.cutting_force_n_per_m, s.feed_force_n_per_m, s.chip_thickness_m][j].filter(|v| *v > 0.0)
+    };
+    let mut sd = default;
+    let mut source: [String; 3] = std::array::from_fn(|j| format!("assumed default {:.0} %", 100.0 * default[j]));
+    for j in 0..3 {
+        let measured: Vec<&CuttingTest> = tests.iter().filter(|t| value(t, j).is_some()).collect();
+        let mut rel: Vec<f64> =
+            measured.iter().filter_map(|t| Some(sd_of(t, j)? / value(t, j)?)).filter(|r| r.is_finite()).collect();
+        if !measured.is_empty() && 2 * rel.len() >= measured.len() {
+            rel.sort_by(f64::total_cmp);
+            sd[j] = rel[rel.len() / 2].max(FLOOR);
+            source[j] = format!("per-row sd columns ({} rows, median)", rel.len());
+            continue;
+        }
+        let (mut ss, mut df) = (0.0, 0usize);
+        for g in groups {
+            let ln: Vec<f64> = g.iter().filter_map(|&i| value(&tests[i], j)).map(f64::ln).collect();
+            if ln.len() >= 2 {
+                let mean = ln.iter().sum::<f64>() / ln.len() as f64;
+                ss += ln.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>();
+                df += ln.len() - 1;
+            }
+        }
+        if df >= 3 {
+            sd[j] = (ss / df as f64).sqrt().max(FLOOR);
+            source[j] = format!("repeated conditions (df = {df})");
+        }
+    }
+    NoiseModel { sd, source }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cutcal_model::MeasuredSd;
+
+    fn test(id: &str, v: f64, fc: f64) -> CuttingTest {
+        let mut t = CuttingTest::new(id, v, 0.1e-3, 1e-3, 0.0).unwrap();
+        t.measured.cutting_force_n_per_m = Some(fc);
+        t
+    }
+
+    #[test]
+    fn repeats_give_the_pooled_log_spread() {
+        // Two conditions, each with ln-values +-0.02 about their mean (3 and 2 repeats, df = 3):
+        // ss = 2 * 0.02^2 + 2 * 0.02^2 = 0.0016 -> sd = sqrt(0.0016 / 3) = 0.023094.
+        let e = |x: f64| 1000.0 * x.exp();
+        let tests = vec![
+            test("a1", 2.0, e(0.02)),
+            test("a2", 2.0, e(-0.02)),
+            test("a3", 2.0, e(0.0)),
+            test("b1", 3.0, e(0.5 + 0.02)),
+            test("b2", 3.0, e(0.5 - 0.02)),
+        ];
+        let nm = from_data(&tests, &[vec![0, 1, 2], vec![3, 4]], [0.03, 0.05, 0.05]);
+        assert!((nm.sd[0] - 0.023_094).abs() < 1e-5, "{:?}", nm);
+        assert!(nm.source[0].contains("df = 3"));
+        assert_eq!(nm.sd[1], 0.05);
+        assert!(nm.source[1].contains("default"));
+    }
+
+    #[test]
+    fn per_row_sd_columns_win_over_repeats() {
+        let mut tests = vec![test("a", 2.0, 1000.0), test("b", 3.0, 2000.0)];
+        for (t, s) in tests.iter_mut().zip([20.0, 60.0]) {
+            t.measured.sd = MeasuredSd { cutting_force_n_per_m: Some(s), ..MeasuredSd::default() };
+        }
+        // Relative 0.02 and 0.03: the median of two is the upper one.
+        let nm = from_data(&tests, &[vec![0], vec![1]], [0.03, 0.05, 0.05]);
+        assert!((nm.sd[0] - 0.03).abs() < 1e-12 && nm.source[0].contains("per-row"));
+    }
+}

@@ -1,0 +1,384 @@
+//! Mode A: the *shadow* of an external simulation (issue 10, item 1).
+//!
+//! The user has an external simulation (an FE run, another code) per test and the recordings, and
+//! often no cutcal material file. cutcal fits its own extended Oxley model (Oxley 1989; Lalwani,
+//! Mehta & Jain 2009; `cutcal_model::oxley`) to the external numbers with a few global parameters
+//! (a flow-stress level, the JC hardening exponent n and the rate and thermal sensitivities C and m),
+//! on the given material's thermal properties or a generic steel's. The shadow's response to each
+//! mechanism hook and to each nuisance knob, computed at every test's own conditions, is then the
+//! signature laid on top of the external numbers:
+//!
+//! `ln y_i(theta, hooks) = ln y_ext,i + sum_k [S_ik(u_ik) - S_ik(u_k,off)]`
+//!
+//! with `S_ik` the shadow's `ln Fc, ln Ft, ln t2` (and temperatures) as a function of knob `k` at
+//! test `i`, tabulated on a grid and interpolated by monotone cubic Hermite splines (Fritsch &
+//! Carlson 1980). Knob effects combine additively in the logarithm (first order in the
+//! interactions). Nothing is taken from constants measured at one reference condition.
+
+use cutcal_ident::lm::{minimise, Bounds, LmOptions, Problem};
+use cutcal_ident::IdentError;
+use cutcal_model::oxley::OxleyOptions;
+use cutcal_model::{CuttingTest, JcParams, Material, TempPolynomial};
+use nalgebra::DVector;
+use rayon::prelude::*;
+
+use crate::error::DiagnoseError;
+use crate::hooks::{Hook, Hooks};
+use crate::simulator::{oxley_with_hooks, ParamSpec, Prediction, Simulator};
+use crate::spline::Table;
+
+/// A knob of the shadow: a mechanism hook or a nuisance constant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Knob {
+    Hook(Hook),
+    /// Oxley's primary-zone temperature factor eta (Oxley 1989: 0.9).
+    Eta,
+    /// Oxley's interface temperature factor psi (Oxley 1989: 0.9).
+    Psi,
+    /// ln of a scale on rho Cp (the material's thermal constants).
+    LnRhoCp,
+}
+
+/// Table grid of a knob, in the knob's coordinate (`ln` of the multiplier for the flow-stress
+/// multiplier, the hook value otherwise), and its off value.
+fn grid(k: Knob) -> (Vec<f64>, f64) {
+    match k {
+        Knob::Hook(Hook::FrictionFactor) => ((2..=10).map(|i| f64::from(i) / 10.0).collect(), 1.0),
+        Knob::Hook(Hook::HeatPartition) => (vec![0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8], 1.0),
+        Knob::Hook(Hook::ExtraSoftening) => (vec![0.0, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0, 1.25, 1.5], 0.0),
+        Knob::Hook(Hook::RakeShift) => {
+            ([0.0, 2.0, 4.0, 6.0, 9.0, 12.0, 16.0, 20.0, 25.0].iter().map(|d: &f64| d.to_radians()).collect(), 0.0)
+        }
+        Knob::Hook(Hook::FlowMultiplier) => (vec![-0.8, -0.6, -0.4, -0.2, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2], 0.0),
+        Knob::Hook(Hook::EdgeRadius) => ([0.0, 5.0, 10.0, 15.0, 20.0, 30.0, 40.0, 60.0, 80.0].map(|u| u * 1e-6).to_vec(), 0.0),
+        Knob::Hook(Hook::WearLand) => ([0.0, 0.025, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4].map(|u| u * 1e-3).to_vec(), 0.0),
+        Knob::Eta | Knob::Psi => (vec![0.81, 0.855, 0.9, 0.945, 0.99], 0.9),
+        Knob::LnRhoCp => (vec![-0.15, -0.075, 0.0, 0.075, 0.15], 0.0),
+    }
+}
+
+const KNOBS: [Knob; 10] = [
+    Knob::Hook(Hook::FrictionFactor),
+    Knob::Hook(Hook::HeatPartition),
+    Knob::Hook(Hook::ExtraSoftening),
+    Knob::Hook(Hook::RakeShift),
+    Knob::Hook(Hook::FlowMultiplier),
+    Knob::Hook(Hook::EdgeRadius),
+    Knob::Hook(Hook::WearLand),
+    Knob::Eta,
+    Knob::Psi,
+    Knob::LnRhoCp,
+];
+
+/// What the shadow fit found (for the report).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShadowSummary {
+    /// Material of the shadow (its thermal properties).
+    pub material: String,
+    /// The shadow's JC set after the fit.
+    pub jc: JcParams,
+    /// RMS of `ln(y_shadow / y_external)` over all outputs, %, after the fit.
+    pub rms_pct: f64,
+    /// Tests whose shadow had no solution (their signatures are zero), with the reason.
+    pub unsolved: Vec<(String, String)>,
+    /// Shadow-fit iterations used, and whether it met a tolerance.
+    pub converged: bool,
+}
+
+/// Mode A simulator: the external numbers, moved by the shadow's per-test signatures.
+#[derive(Debug, Clone)]
+pub struct ShadowSimulation {
+    ids: Vec<String>,
+    external: Vec<Prediction>,
+    /// `tables[i][k]`: test i, knob k (order of `KNOBS`); `None` when the shadow has no solution.
+    tables: Vec<Option<Vec<Table>>>,
+    params: Vec<ParamSpec>,
+    summary: ShadowSummary,
+}
+
+/// The shadow model for one knob setting.
+struct Shadow<'a> {
+    material: &'a Material,
+    jc: JcParams,
+}
+
+impl Shadow<'_> {
+    fn eval(&self, t: &CuttingTest, knob: Option<(Knob, f64)>) -> Result<[f64; 5], DiagnoseError> {
+        let mut h = Hooks::NEUTRAL;
+        let mut options = OxleyOptions::wide();
+        let mut scaled: Material;
+        let mut material = self.material;
+        match knob {
+            Some((Knob::Hook(Hook::FlowMultiplier), u)) => h.flow_multiplier = u.exp(),
+            Some((Knob::Hook(k), u)) => h = k.with(h, u),
+            Some((Knob::Eta, u)) => options.eta = u,
+            Some((Knob::Psi, u)) => options.psi = u,
+            Some((Knob::LnRhoCp, u)) => {
+                scaled = self.material.clone();
+                let c: Vec<f64> = scaled.thermal.rho_cp.coefficients().iter().map(|c| c * u.exp()).collect();
+                scaled.thermal.rho_cp = TempPolynomial::new(c)
+                    .map_err(|e| DiagnoseError::Model { test: t.id.clone(), source: e })?;
+                material = &scaled;
+            }
+            None => {}
+        }
+        let p = oxley_with_hooks(material, &self.jc, t, &h, &options)?;
+        Ok([p.fc_n_per_m.ln(), p.ft_n_per_m.ln(), p.chip_m.ln(), p.t_ab_c.unwrap_or(0.0), p.t_int_c.unwrap_or(0.0)])
+    }
+}
+
+/// Least squares of the shadow's globals `[ln level, n, C, m]` against the external numbers.
+struct ShadowFit<'a> {
+    material: &'a Material,
+    nominal: JcParams,
+    tests: &'a [CuttingTest],
+    external: &'a [Prediction],
+}
+
+impl ShadowFit<'_> {
+    fn jc(&self, p: &[f64]) -> JcParams {
+        JcParams {
+            a_pa: self.nominal.a_pa * p[0].exp(),
+            b_pa: self.nominal.b_pa * p[0].exp(),
+            n: p[1],
+            c: p[2],
+            m: p[3],
+            ..self.nominal
+        }
+    }
+}
+
+impl Problem for ShadowFit<'_> {
+    fn parameter_count(&self) -> usize {
+        4
+    }
+    fn residual_count(&self) -> usize {
+        3 * self.tests.len() + 3
+    }
+    fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
+        let x: Vec<f64> = p.iter().copied().collect();
+        let sh = Shadow { material: self.material, jc: self.jc(&x) };
+        let ys: Vec<Result<[f64; 5], DiagnoseError>> = self.tests.par_iter().map(|t| sh.eval(t, None)).collect();
+        for (i, (y, e)) in ys.into_iter().zip(self.external).enumerate() {
+            let y = y.map_err(|e| match e {
+                DiagnoseError::Model { source, .. } => IdentError::Model(source),
+                other => IdentError::InvalidOptions(other.to_string()),
+            })?;
+            out[3 * i] = e.fc_n_per_m.ln() - y[0];
+            out[3 * i + 1] = e.ft_n_per_m.ln() - y[1];
+            out[3 * i + 2] = e.chip_m.ln() - y[2];
+        }
+        // Weak priors (pseudo-residuals in the same log units, one per 0.05 of noise): n +-0.1,
+        // C +-0.01, m +-0.2 about the nominal set.
+        let k = 3 * self.tests.len();
+        out[k] = 0.05 * (x[1] - self.nominal.n) / 0.1;
+        out[k + 1] = 0.05 * (x[2] - self.nominal.c) / 0.01;
+        out[k + 2] = 0.05 * (x[3] - self.nominal.m) / 0.2;
+        Ok(())
+    }
+}
+
+impl ShadowSimulation {
+    /// Fits the shadow to `external` (one prediction per test of `tests`, same order) on
+    /// `material` from the JC set `nominal`, then tabulates every knob at every test.
+    ///
+    /// `level_free`: whether the diagnosis baseline gets a free flow-stress level (use it with at
+    /// least three conditions).
+    ///
+    /// Returns an error if the shadow has no solution at more than half of the tests.
+    pub fn build(
+        material: &Material,
+        nominal: JcParams,
+        tests: &[CuttingTest],
+        external: &[Prediction],
+        level_free: bool,
+    ) -> Result<Self, DiagnoseError> {
+        if tests.len() != external.len() || tests.is_empty() {
+            return Err(DiagnoseError::Inconsistent("the shadow needs one external prediction per test".into()));
+        }
+        // Solvable tests at the nominal set; the fit runs on those.
+        let sh0 = Shadow { material, jc: nominal };
+        let first: Vec<Result<[f64; 5], DiagnoseError>> = tests.par_iter().map(|t| sh0.eval(t, None)).collect();
+        let ok: Vec<usize> = (0..tests.len()).filter(|&i| first[i].is_ok()).collect();
+        if 2 * ok.len() < tests.len() {
+            let why = first.iter().find_map(|r| r.as_ref().err().map(ToString::to_string)).unwrap_or_default();
+            return Err(DiagnoseError::Inconsistent(format!(
+                "the shadow model has no solution at {} of {} tests ({why})",
+                tests.len() - ok.len(),
+                tests.len()
+            )));
+        }
+        let fit_tests: Vec<CuttingTest> = ok.iter().map(|&i| tests[i].clone()).collect();
+        let fit_ext: Vec<Prediction> = ok.iter().map(|&i| external[i]).collect();
+        // Start the level at the median force ratio.
+        let mut ratios: Vec<f64> = ok
+            .iter()
+            .filter_map(|&i| first[i].as_ref().ok().map(|y| external[i].fc_n_per_m.ln() - y[0]))
+            .collect();
+        ratios.sort_by(f64::total_cmp);
+        let level0 = ratios[ratios.len() / 2].clamp(-2.0, 2.0);
+        let problem = ShadowFit { material, nominal, tests: &fit_tests, external: &fit_ext };
+        let bounds = Bounds::new(
+            vec!["ln_level".into(), "n".into(), "C".into(), "m".into()],
+            vec![-2.5, 0.05, 1e-4, 0.3],
+            vec![2.5, 0.8, 0.2, 2.5],
+        )
+        .map_err(|e| DiagnoseError::Fit(e.to_string()))?;
+        let start = DVector::from_vec(vec![
+            level0,
+            nominal.n.clamp(0.05, 0.8),
+            nominal.c.clamp(1e-4, 0.2),
+            nominal.m.clamp(0.3, 2.5),
+        ]);
+        let opts = LmOptions { max_iterations: 30, gradient_tolerance: 1e-6, cost_tolerance: 1e-6, step_tolerance: 1e-6 };
+        let (x, converged) = match minimise(&problem, &bounds, &start, &opts) {
+            Ok(r) => (r.params.iter().copied().collect::<Vec<f64>>(), r.termination != cutcal_ident::lm::Termination::MaxIterations),
+            Err(_) => (start.iter().copied().collect(), false),
+        };
+        let jc = problem.jc(&x);
+        let sh = Shadow { material, jc };
+        let built: Vec<Result<Vec<Table>, DiagnoseError>> = tests
+            .par_iter()
+            .map(|t| {
+                let base = sh.eval(t, None)?;
+                KNOBS
+                    .iter()
+                    .map(|&k| {
+                        let (nodes, off) = grid(k);
+                        let values: Vec<Option<[f64; 5]>> =
+                            nodes.iter().map(|&u| if (u - off).abs() < 1e-12 { Some(base) } else { sh.eval(t, Some((k, u))).ok() }).collect();
+                        Table::new(&nodes, &values, off)
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut unsolved = Vec::new();
+        let mut sq = (0.0, 0usize);
+        let tables: Vec<Option<Vec<Table>>> = built
+            .into_iter()
+            .enumerate()
+            .map(|(i, r)| match r {
+                Ok(v) => {
+                    let y = v[4].at(0.0);
+                    let e = &external[i];
+                    for (a, b) in [(e.fc_n_per_m.ln(), y[0]), (e.ft_n_per_m.ln(), y[1]), (e.chip_m.ln(), y[2])] {
+                        sq.0 += (a - b) * (a - b);
+                        sq.1 += 1;
+                    }
+                    Some(v)
+                }
+                Err(e) => {
+                    unsolved.push((tests[i].id.clone(), e.to_string()));
+                    None
+                }
+            })
+            .collect();
+        let rms_pct = if sq.1 > 0 { 100.0 * ((sq.0 / sq.1 as f64).sqrt().exp() - 1.0) } else { 0.0 };
+        let mut params = Vec::new();
+        if level_free {
+            params.push(ParamSpec {
+                name: "ln_flow_stress_level".into(),
+                unit: "-".into(),
+                start: 0.0,
+                lower: -0.7,
+                upper: 0.7,
+                prior_sd: None,
+            });
+        }
+        // Nuisance with stated uncertainty (issue 10, item 3): eta and psi +-3 %, rho Cp +-5 %
+        // (one standard deviation), bounded at about +-3 sd.
+        for (name, start, sd) in [("eta", 0.9, 0.027), ("psi", 0.9, 0.027)] {
+            params.push(ParamSpec {
+                name: name.into(),
+                unit: "-".into(),
+                start,
+                lower: start - 3.3 * sd,
+                upper: start + 3.3 * sd,
+                prior_sd: Some(sd),
+            });
+        }
+        params.push(ParamSpec {
+            name: "ln_rho_cp_scale".into(),
+            unit: "-".into(),
+            start: 0.0,
+            lower: -0.15,
+            upper: 0.15,
+            prior_sd: Some(0.05),
+        });
+        Ok(Self {
+            ids: tests.iter().map(|t| t.id.clone()).collect(),
+            external: external.to_vec(),
+            tables,
+            params,
+            summary: ShadowSummary { material: material.name.clone(), jc, rms_pct, unsolved, converged },
+        })
+    }
+
+    /// What the shadow fit found.
+    #[must_use]
+    pub fn summary(&self) -> &ShadowSummary {
+        &self.summary
+    }
+
+    /// Knob coordinates `(knob index, u)` of test hooks `h` at baseline `theta`.
+    fn coordinates(&self, theta: &[f64], h: &Hooks) -> [f64; 10] {
+        let level_free = self.params.first().is_some_and(|p| p.name == "ln_flow_stress_level");
+        let o = usize::from(level_free);
+        let level = if level_free { theta.first().copied().unwrap_or(0.0) } else { 0.0 };
+        let nuis = |k: usize, def: f64| theta.get(o + k).copied().unwrap_or(def);
+        [
+            h.friction_factor,
+            h.heat_partition_scale,
+            h.extra_softening,
+            h.rake_shift_rad,
+            level + h.flow_multiplier.max(1e-6).ln(),
+            h.edge_radius_m,
+            h.wear_land_m,
+            nuis(0, 0.9),
+            nuis(1, 0.9),
+            nuis(2, 0.0),
+        ]
+    }
+}
+
+impl Simulator for ShadowSimulation {
+    fn baseline_params(&self) -> &[ParamSpec] {
+        &self.params
+    }
+    fn supports(&self, _hook: Hook) -> bool {
+        true
+    }
+    fn can_extrapolate(&self) -> bool {
+        false
+    }
+    fn simulate(&self, tests: &[CuttingTest], theta: &[f64], hooks: &[Hooks]) -> Result<Vec<Prediction>, DiagnoseError> {
+        tests
+            .iter()
+            .zip(hooks)
+            .map(|(t, h)| {
+                let i = self.ids.iter().position(|id| *id == t.id).ok_or_else(|| {
+                    DiagnoseError::Inconsistent(format!("test `{}` is in the recordings but not in the simulation", t.id))
+                })?;
+                let e = self.external[i];
+                let Some(tabs) = &self.tables[i] else { return Ok(e) };
+                let u = self.coordinates(theta, h);
+                let mut d = [0.0; 5];
+                for (tab, &uk) in tabs.iter().zip(&u) {
+                    let dv = tab.delta(uk);
+                    for j in 0..5 {
+                        d[j] += dv[j];
+                    }
+                }
+                let base = tabs[4].at(0.0);
+                Ok(Prediction {
+                    fc_n_per_m: e.fc_n_per_m * d[0].exp(),
+                    ft_n_per_m: e.ft_n_per_m * d[1].exp(),
+                    chip_m: e.chip_m * d[2].exp(),
+                    t_ab_c: Some(e.t_ab_c.unwrap_or(base[3]) + d[3]),
+                    t_int_c: Some(e.t_int_c.unwrap_or(base[4]) + d[4]),
+                    beta: e.beta,
+                })
+            })
+            .collect()
+    }
+}
