@@ -16,8 +16,12 @@ pub mod stats;
 
 pub use error::DiagnoseError;
 pub mod diagnose;
+mod locate;
 pub mod mechanism;
+mod narrative;
+mod problem;
 pub mod report;
+mod screen;
 pub mod simulator;
 
 pub use diagnose::{diagnose, Config};

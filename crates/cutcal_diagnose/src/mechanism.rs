@@ -339,7 +339,9 @@ pub fn correct(id: MechanismId, phi: &[f64], preds: &mut [Prediction]) {
 pub fn testable(id: MechanismId, tests: &[CuttingTest], ctx: &Context, sim: &dyn Simulator) -> Result<(), String> {
     if let Some(hook) = info(id).hook {
         if !sim.supports(hook) {
-            return Err(format!("the simulation cannot switch it on (no {hook:?} hook; the shadow model was not built)"));
+            return Err(format!(
+                "the simulation cannot switch it on (no {hook:?} hook; the shadow model was not built)"
+            ));
         }
     }
     let distinct = |f: &dyn Fn(&CuttingTest) -> f64| {

@@ -15,9 +15,10 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use crate::diagnose::{screen_and_refit, Problem};
 use crate::fit::{self, observations, Fit, Spec};
 use crate::mechanism::MechanismId;
+use crate::problem::Problem;
+use crate::screen::screen_and_refit;
 
 /// Outcome of the calibration.
 #[derive(Debug, Clone, PartialEq)]

@@ -200,7 +200,14 @@ impl OxleySimulator {
         if theta.len() < 5 {
             return self.nominal;
         }
-        JcParams { a_pa: theta[0].exp() * 1e6, b_pa: theta[1].exp() * 1e6, n: theta[2], c: theta[3], m: theta[4], ..self.nominal }
+        JcParams {
+            a_pa: theta[0].exp() * 1e6,
+            b_pa: theta[1].exp() * 1e6,
+            n: theta[2],
+            c: theta[3],
+            m: theta[4],
+            ..self.nominal
+        }
     }
 }
 

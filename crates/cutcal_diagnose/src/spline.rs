@@ -57,11 +57,18 @@ impl Table {
         let k = self.u.partition_point(|x| *x <= v).saturating_sub(1).min(n - 2);
         let h = self.u[k + 1] - self.u[k];
         let s = (v - self.u[k]) / h;
-        let (h00, h10, h01, h11) =
-            (2.0 * s.powi(3) - 3.0 * s * s + 1.0, s.powi(3) - 2.0 * s * s + s, -2.0 * s.powi(3) + 3.0 * s * s, s.powi(3) - s * s);
+        let (h00, h10, h01, h11) = (
+            2.0 * s.powi(3) - 3.0 * s * s + 1.0,
+            s.powi(3) - 2.0 * s * s + s,
+            -2.0 * s.powi(3) + 3.0 * s * s,
+            s.powi(3) - s * s,
+        );
         let mut out = [0.0; WIDTH];
         for j in 0..WIDTH {
-            out[j] = h00 * self.y[k][j] + h10 * h * self.slope[k][j] + h01 * self.y[k + 1][j] + h11 * h * self.slope[k + 1][j];
+            out[j] = h00 * self.y[k][j]
+                + h10 * h * self.slope[k][j]
+                + h01 * self.y[k + 1][j]
+                + h11 * h * self.slope[k + 1][j];
         }
         out
     }

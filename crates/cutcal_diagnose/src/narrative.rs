@@ -1,0 +1,228 @@
+//! The report's words: per-mechanism results, the next test that would separate the rivals
+//! (T-optimal design, Atkinson & Fedorov 1975), and the plain-language explanation.
+
+use std::collections::BTreeMap;
+
+use cutcal_model::CuttingTest;
+
+use crate::fit::{self, output, Fit, Obs, Spec};
+use crate::mechanism::{info, MechanismId};
+use crate::problem::{rms_pct, Candidate, Loco, Problem};
+use crate::report::*;
+use crate::screen::finite;
+use crate::simulator::Simulator;
+
+pub(crate) fn result_of(
+    c: &Candidate,
+    _sim: &dyn Simulator,
+    base_loco: Option<&Loco>,
+    obs: &[Obs],
+    noise: &[f64; 3],
+    _current: &Fit,
+) -> MechanismResult {
+    let inf = info(c.id);
+    let mut params = BTreeMap::new();
+    for (pi, (v, l, h)) in inf.params.iter().zip(&c.ci) {
+        params.insert(
+            pi.name.to_string(),
+            ParamValue {
+                value: *v,
+                unit: pi.unit.into(),
+                ci_low: *l,
+                ci_high: *h,
+                ci_note: if l.is_some() && h.is_some() { String::new() } else { c.ci_note.clone() },
+            },
+        );
+    }
+    if c.id == MechanismId::BuiltUpEdge {
+        let v = c.spec.ctx.bue_onset_m_min;
+        params.insert(
+            "v_onset".into(),
+            ParamValue {
+                value: v,
+                unit: "m/min".into(),
+                ci_low: None,
+                ci_high: None,
+                ci_note: "chosen on a grid of the tested speeds, not fitted".into(),
+            },
+        );
+    }
+    let outputs: Vec<usize> = obs.iter().map(|o| o.output).collect();
+    MechanismResult {
+        id: c.id.as_str().into(),
+        accepted: c.accepted,
+        params,
+        delta_aicc: finite(c.daicc),
+        p_value: finite(c.p),
+        heldout_rms_before: base_loco.map(|l| rms_pct(&l.resid, &outputs, noise).all),
+        heldout_rms_after: c.loco_after.as_ref().map(|l| rms_pct(&l.resid, &outputs, noise).all),
+        explained_fraction: c.explained,
+        absorption: c.absorption,
+        screen_p_value: finite(c.screen_p),
+        reason: c.reason.clone(),
+    }
+}
+
+#[allow(clippy::too_many_arguments)] // the report's assembled pieces, one call site
+pub(crate) fn next_test(
+    pr: &Problem<'_>,
+    verdict: Verdict,
+    accepted: &[MechanismId],
+    ambiguous: &[MechanismId],
+    cands: &[Candidate],
+    base: &Fit,
+    base_spec: &Spec,
+    current: &Fit,
+    current_spec: &Spec,
+) -> String {
+    let find = |m: MechanismId| cands.iter().find(|c| c.id == m);
+    match verdict {
+        Verdict::None => "none needed: no significant mismatch; add conditions only to widen the validated range".into(),
+        Verdict::Unexplained => format!(
+            "the mismatch fits no library mechanism: measure the edge radius, the flank wear and the interface temperature, and add feeds and speeds outside the present range ({} conditions now)",
+            pr.groups.len()
+        ),
+        Verdict::MissingPhysics => {
+            let m = accepted[0];
+            match t_optimal(pr, (&base_spec.clone(), &base.x), (current_spec, &current.x)) {
+                Some(s) => format!("confirm {} with a test at {s} where the corrected and uncorrected models differ most", m.as_str()),
+                None => format!("confirm {}: {}", m.as_str(), info(m).separate_by),
+            }
+        }
+        Verdict::Ambiguous => {
+            let mut parts = Vec::new();
+            if ambiguous.len() >= 2 {
+                if let (Some(a), Some(b)) = (find(ambiguous[0]), find(ambiguous[1])) {
+                    if let Some(s) = t_optimal(pr, (&a.spec, &a.fit.x), (&b.spec, &b.fit.x)) {
+                        parts.push(format!("a test at {s} separates {} from {}", a.id.as_str(), b.id.as_str()));
+                    }
+                }
+            }
+            for m in ambiguous {
+                parts.push(format!("{}: {}", m.as_str(), info(*m).separate_by));
+            }
+            parts.join("; ")
+        }
+    }
+}
+
+/// The condition of a small grid around the design where two fitted models differ most
+/// (T-optimal discrimination, Atkinson & Fedorov 1975); `None` if the simulator cannot extrapolate.
+pub(crate) fn t_optimal(pr: &Problem<'_>, a: (&Spec, &[f64]), b: (&Spec, &[f64])) -> Option<String> {
+    if !pr.sim.can_extrapolate() {
+        return None;
+    }
+    let t0 = pr.tests.first()?;
+    let hs: Vec<f64> = pr.tests.iter().map(|t| t.uncut_chip_thickness_m).collect();
+    let vs: Vec<f64> = pr.tests.iter().map(|t| t.speed_m_per_s).collect();
+    let (hmin, hmax) = (hs.iter().cloned().fold(f64::INFINITY, f64::min), hs.iter().cloned().fold(0.0, f64::max));
+    let (vmin, vmax) = (vs.iter().cloned().fold(f64::INFINITY, f64::min), vs.iter().cloned().fold(0.0, f64::max));
+    let grid = |lo: f64, hi: f64| -> Vec<f64> {
+        (0..5).map(|i| (0.6 * lo) * ((1.6 * hi) / (0.6 * lo)).powf(i as f64 / 4.0)).collect()
+    };
+    let mut best: Option<(f64, String)> = None;
+    for h in grid(hmin, hmax) {
+        for v in grid(vmin, vmax) {
+            let Ok(mut t) = CuttingTest::new("next", v, h.min(4.9e-3), t0.width_m, t0.rake_rad) else { continue };
+            t.edge_radius_m = t0.edge_radius_m;
+            let one = [t];
+            let pred = |(spec, x): (&Spec, &[f64])| {
+                let mut ctx = spec.ctx.clone();
+                ctx.wear_state = ctx.wear_state.map(|_| vec![1.0]);
+                fit::predict(pr.sim, &one, &Spec { mechanisms: spec.mechanisms.clone(), ctx: ctx.clone() }, &ctx, x)
+                    .ok()
+            };
+            let (Some(pa), Some(pb)) = (pred(a), pred(b)) else { continue };
+            let mut dsum = 0.0;
+            let mut diffs = [0.0; 3];
+            for (j, d) in diffs.iter_mut().enumerate() {
+                *d = 100.0 * (output(&pa[0], j) / output(&pb[0], j) - 1.0);
+                dsum += ((output(&pa[0], j) / output(&pb[0], j)).ln() / pr.cfg.noise[j]).powi(2);
+            }
+            let text = format!(
+                "h = {:.3} mm, V = {:.0} m/min (predictions differ by Fc {:+.1} %, Ft {:+.1} %, tc {:+.1} %)",
+                h * 1e3,
+                v * 60.0,
+                diffs[0],
+                diffs[1],
+                diffs[2]
+            );
+            if best.as_ref().map_or(true, |(b, _)| dsum > *b) {
+                best = Some((dsum, text));
+            }
+        }
+    }
+    best.map(|b| b.1)
+}
+
+#[allow(clippy::too_many_arguments)] // the report's assembled pieces, one call site
+pub(crate) fn explain(
+    verdict: Verdict,
+    mismatch: &[Mismatch],
+    accepted: &[MechanismId],
+    ambiguous: &[MechanismId],
+    cands: &[Candidate],
+    fit: &FitSummary,
+    conditions: usize,
+    global: &GlobalMisfit,
+) -> String {
+    let mut s = String::new();
+    let big: Vec<String> = mismatch
+        .iter()
+        .filter(|m| m.p_value < 0.05)
+        .map(|m| {
+            let name = match m.output.as_str() {
+                "fc" => "cutting force",
+                "ft" => "feed force",
+                _ => "chip thickness",
+            };
+            let side = if m.bias_pct > 0.0 { "higher" } else { "lower" };
+            let trend = if m.trend == "none" { String::new() } else { format!(", and the gap {}", m.trend) };
+            format!("the measured {name} is {:.0} % {side} than the model on average{trend}", m.bias_pct.abs())
+        })
+        .collect();
+    if big.is_empty() {
+        s.push_str("The model and the recordings agree within the assumed measurement scatter. ");
+    } else {
+        s.push_str(&format!("Where the model misses: {}. ", big.join("; ")));
+    }
+    match verdict {
+        Verdict::MissingPhysics => {
+            for m in accepted {
+                let inf = info(*m);
+                s.push_str(&format!(
+                    "The missing physics is most likely {} ({}). Expected signature: {}. It was fitted together with the material parameters, passed a significance test calibrated for a 5 % false-alarm rate over all mechanisms tried, has a bounded confidence interval, and improves the prediction of conditions left out of the fit. ",
+                    inf.title, inf.source, inf.signature
+                ));
+            }
+            if let (Some(b), Some(a)) = (&fit.before.loco, &fit.after.loco) {
+                s.push_str(&format!("Held-out error falls from {:.1} % to {:.1} % RMS. ", b.all, a.all));
+            }
+        }
+        Verdict::Ambiguous => {
+            let list: Vec<String> = ambiguous.iter().map(|m| format!("{} ({})", m.as_str(), info(*m).title)).collect();
+            if conditions < 3 {
+                s.push_str(&format!(
+                    "With only {conditions} test condition(s) nothing can be validated on held-out data, so no mechanism is claimed. Each of these could explain the gap: {}. ",
+                    list.join("; ")
+                ));
+            } else {
+                s.push_str(&format!("These mechanisms explain the gap about equally well and cannot be told apart with this test matrix: {}. ", list.join("; ")));
+            }
+        }
+        Verdict::Unexplained => {
+            s.push_str(&format!(
+                "The mismatch is real (chi-square p = {:.1e}) but no library mechanism passed all checks; treat the model as biased here and do not trust extrapolation. ",
+                global.p_value
+            ));
+            if let Some(c) = cands.iter().max_by(|a, b| a.explained.total_cmp(&b.explained)) {
+                s.push_str(&format!("The closest candidate was {} ({}).", c.id.as_str(), c.reason));
+            }
+        }
+        Verdict::None => {
+            s.push_str("No mechanism is needed; a more complex model would only fit noise.");
+        }
+    }
+    s.push_str(" In-sample improvement alone is never taken as evidence.");
+    s
+}

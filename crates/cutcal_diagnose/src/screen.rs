@@ -1,0 +1,276 @@
+//! Screen and refit (design note Sec 3.3-3.4): absorbability-aware score tests of each remaining
+//! mechanism at the current fit (Rao 1948 score test, projected on the directions the baseline can
+//! absorb), then joint refits of the best candidates with their F-test (one-sided halving for a
+//! one-sided single parameter, Self & Liang 1987) and 95 % Wald intervals.
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::error::DiagnoseError;
+use crate::fit::{self, data_jacobian, project_out, Fit, Spec};
+use crate::mechanism::{bue_onsets, info, MechanismId};
+use crate::problem::{Candidate, Problem};
+use crate::report::*;
+use crate::stats;
+
+/// Whether a mechanism's single parameter is one-sided (its off value sits on a bound).
+pub(crate) fn one_sided(id: MechanismId) -> bool {
+    let inf = info(id);
+    inf.params.len() == 1 || id == MechanismId::BuiltUpEdge
+}
+
+/// F-test p-value of a nested least-squares comparison (halved for a one-sided single parameter).
+pub(crate) fn f_test(rss0: f64, rss1: f64, d: usize, n: usize, k1: usize, one_sided_param: bool) -> f64 {
+    if d == 0 || n <= k1 || rss1 <= 0.0 {
+        return f64::NAN;
+    }
+    let df2 = (n - k1) as f64;
+    let f = ((rss0 - rss1).max(0.0) / d as f64) / (rss1 / df2);
+    let p = stats::f_sf(f, d as f64, df2);
+    if d == 1 && one_sided_param {
+        0.5 * p
+    } else {
+        p
+    }
+}
+
+pub(crate) fn cosine(a: &[f64], b: &[f64]) -> f64 {
+    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        ab += x * y;
+        aa += x * x;
+        bb += y * y;
+    }
+    if aa <= 0.0 || bb <= 0.0 {
+        0.0
+    } else {
+        (ab / (aa * bb).sqrt()).abs()
+    }
+}
+
+/// Screens `remaining` mechanisms by absorbability-aware score tests and refits the best jointly.
+pub(crate) fn screen_and_refit(
+    pr: &Problem<'_>,
+    current: &Fit,
+    current_spec: &Spec,
+    remaining: &[MechanismId],
+) -> Result<(Vec<Candidate>, Vec<NotTestable>), DiagnoseError> {
+    let mut lost = Vec::new();
+    let noise = pr.cfg.noise;
+    let n = pr.n();
+    let (_, lo, hi, _) = fit::layout(pr.sim, current_spec);
+    // Absorbability is judged along the directions the current parameters can still move in both
+    // ways: a parameter held at a bound (e.g. JC n at its floor) cannot absorb a signature that needs
+    // it beyond the bound, so its column is left out of the projection (the refit, with the
+    // parameter free inside its box, decides). The screen only ranks candidates for the refit; the
+    // acceptance tests are unchanged.
+    let cols: Vec<usize> =
+        (0..current.k).filter(|&i| (current.x[i] - lo[i]).min(hi[i] - current.x[i]) > 1e-6 * (hi[i] - lo[i])).collect();
+    let steps: Vec<f64> = cols.iter().map(|&i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
+    // A Jacobian probe outside the model's solvable region leaves the screen unprojected.
+    let j = data_jacobian(pr.sim, pr.tests, &pr.obs, current_spec, &noise, &current.x, &cols, &steps)
+        .unwrap_or_else(|_| DMatrix::zeros(n, 0));
+    let e = DVector::from_vec(current.resid.clone());
+    let dof = n.saturating_sub(current.k);
+    let s2 = if dof > 0 { (current.rss / dof as f64).max(1e-12) } else { 1.0 };
+    struct Screened {
+        id: MechanismId,
+        spec: Spec,
+        u: f64,
+        p: f64,
+        absorption: f64,
+        sens: Vec<f64>,
+    }
+    let mut screened = Vec::new();
+    for &m in remaining {
+        let onsets = if m == MechanismId::BuiltUpEdge { bue_onsets(pr.tests) } else { vec![0.0] };
+        let mut best: Option<Screened> = None;
+        let mut screen_error: Option<String> = None;
+        for onset in onsets {
+            let mut ctx = current_spec.ctx.clone();
+            if m == MechanismId::BuiltUpEdge {
+                ctx.bue_onset_m_min = onset;
+            }
+            let mut mechs = current_spec.mechanisms.clone();
+            mechs.push(m);
+            let spec = Spec { mechanisms: mechs, ctx };
+            let inf = info(m);
+            let d = fit::fitted_len(m);
+            let mut s = DMatrix::zeros(n, d);
+            let mut x = current.x.clone();
+            x.extend(inf.params.iter().take(d).map(|p| p.off));
+            let p0 = match fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &x) {
+                Ok(p0) => p0,
+                Err(e) => {
+                    screen_error =
+                        Some(format!("screen: the model has no solution with the mechanism at its off value ({e})"));
+                    continue;
+                }
+            };
+            let r0 = fit::residuals(&pr.obs, &p0, &noise);
+            let mut failed = false;
+            for c in 0..d {
+                let pi = inf.params[c];
+                let h = 0.1 * (pi.typical - pi.off);
+                let mut xp = x.clone();
+                xp[current.k + c] += h;
+                let pp = match fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &xp) {
+                    Ok(pp) => pp,
+                    Err(e) => {
+                        screen_error = Some(format!(
+                            "screen: the model has no solution at the probe {} = {:.4} ({e})",
+                            pi.name,
+                            xp[current.k + c]
+                        ));
+                        failed = true;
+                        break;
+                    }
+                };
+                let rp = fit::residuals(&pr.obs, &pp, &noise);
+                for i in 0..n {
+                    s[(i, c)] = (rp[i] - r0[i]) / h * (pi.typical - pi.off);
+                }
+            }
+            if failed {
+                continue;
+            }
+            let sp = project_out(&j, &s);
+            let total = s.norm_squared();
+            let absorption = if total > 0.0 { 1.0 - sp.norm_squared() / total } else { 1.0 };
+            let spts = sp.transpose() * &sp;
+            let u = match spts.clone().try_inverse() {
+                Some(inv) => {
+                    let g = sp.transpose() * &e;
+                    (g.transpose() * inv * &g)[(0, 0)] / s2
+                }
+                None => 0.0,
+            };
+            let p = if dof > d { stats::f_sf(u / d as f64, d as f64, (dof - d) as f64) } else { f64::NAN };
+            if best.as_ref().map_or(true, |b| u > b.u) {
+                best = Some(Screened { id: m, spec, u, p, absorption, sens: s.column(0).iter().copied().collect() });
+            }
+        }
+        match (best, screen_error) {
+            (Some(b), _) => screened.push(b),
+            (None, Some(reason)) => lost.push(NotTestable { id: m.as_str().into(), reason }),
+            (None, None) => lost.push(NotTestable {
+                id: m.as_str().into(),
+                reason: "screen: no onset candidate on this design".into(),
+            }),
+        }
+    }
+    screened.sort_by(|a, b| b.u.total_cmp(&a.u));
+    // Tiny designs (no held-out validation possible, or few degrees of freedom): refit everything.
+    // So too when the current model misses the data grossly (chi-square p < 1e-3): the score test
+    // is linearised at the current fit, and a large mechanism effect that moves the baseline
+    // parameters far (e.g. friction well below sticking with JC n re-fitted) is then invisible to
+    // it. Refitting more candidates changes no threshold: the Bonferroni level already counts every
+    // testable mechanism.
+    let tiny = pr.groups.len() < 3 || dof < 6;
+    let gross = stats::chi2_sf(current.rss, dof.max(1) as f64) < 1e-3;
+    let chosen: Vec<Screened> = screened
+        .into_iter()
+        .enumerate()
+        .filter(|(r, s)| tiny || gross || (*r < 4 && s.p < 0.25))
+        .map(|(_, s)| s)
+        .collect();
+    let mut out = Vec::new();
+    for s in chosen {
+        let (_, lo, hi, start) = fit::layout(pr.sim, &s.spec);
+        let mut x0 = current.x.clone();
+        x0.extend_from_slice(&start[current.k..]);
+        let f = match pr.fit(&s.spec, Some(&x0)) {
+            Ok(f) => f,
+            Err(e) => {
+                lost.push(NotTestable { id: s.id.as_str().into(), reason: format!("refit failed: {e}") });
+                continue;
+            }
+        };
+        if matches!(f.status, fit::FitStatus::Underdetermined | fit::FitStatus::ShortRetry(_)) {
+            let why = f.status.note().unwrap_or_default();
+            lost.push(NotTestable { id: s.id.as_str().into(), reason: format!("refit not usable: {why}") });
+            continue;
+        }
+        let d = f.k - current.k;
+        let p = f_test(current.rss, f.rss, d, n, f.k, one_sided(s.id));
+        let daicc = stats::aicc(f.rss, n, f.k) - stats::aicc(current.rss, n, current.k);
+        let explained = if current.rss > 0.0 { 1.0 - f.rss / current.rss } else { 0.0 };
+        // 95 % Wald interval of the mechanism parameters from the joint covariance.
+        let cols: Vec<usize> = (0..f.k).collect();
+        let steps: Vec<f64> = (0..f.k).map(|i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
+        let mut ci = Vec::new();
+        let mut ci_note = String::new();
+        let mut ci_ok = false;
+        if let Ok(jf) = data_jacobian(pr.sim, pr.tests, &pr.obs, &s.spec, &pr.cfg.noise, &f.x, &cols, &steps) {
+            let mut jtj = jf.transpose() * &jf;
+            for (i, ps) in pr.sim.baseline_params().iter().enumerate() {
+                if let Some(sd) = ps.prior_sd {
+                    jtj[(i, i)] += 1.0 / (sd * sd);
+                }
+            }
+            let df2 = n.saturating_sub(f.k);
+            let s2f = if df2 > 0 { (f.rss / df2 as f64).max(1e-12) } else { 1.0 };
+            let tq = stats::t_quantile_two_sided(0.05, df2.max(1) as f64);
+            let inverse = jtj.try_inverse();
+            if inverse.is_none() {
+                ci_note = "the joint information matrix is singular (parameters not separable here)".into();
+            }
+            if let Some(cov) = inverse {
+                let inf = info(s.id);
+                let mut any_excludes = false;
+                let mut far_bound = false;
+                for c in 0..d {
+                    let pi = inf.params[c];
+                    let v = f.x[current.k + c];
+                    let se = (cov[(current.k + c, current.k + c)].max(0.0) * s2f).sqrt();
+                    let (l, h) = ((v - tq * se).max(pi.lower), (v + tq * se).min(pi.upper));
+                    if l.is_finite() && h.is_finite() {
+                        ci.push((v, Some(l), Some(h)));
+                    } else {
+                        ci.push((v, None, None));
+                        ci_note = "the joint covariance is not finite at the estimate".into();
+                    }
+                    if pi.off < l || pi.off > h {
+                        any_excludes = true;
+                    }
+                    let far = if (pi.off - pi.lower).abs() <= (pi.off - pi.upper).abs() { pi.upper } else { pi.lower };
+                    if (v - far).abs() < 1e-3 * (pi.upper - pi.lower) {
+                        far_bound = true;
+                    }
+                }
+                ci_ok = any_excludes && !far_bound && df2 > 0;
+            }
+        }
+        if ci.is_empty() {
+            if ci_note.is_empty() {
+                ci_note = "the model has no solution at a Jacobian probe of the refit".into();
+            }
+            ci = (0..d).map(|c| (f.x[current.k + c], None, None)).collect();
+        }
+        let change: Vec<f64> = current.resid.iter().zip(&f.resid).map(|(a, b)| a - b).collect();
+        out.push(Candidate {
+            id: s.id,
+            spec: s.spec,
+            fit: f,
+            p,
+            daicc,
+            explained,
+            absorption: s.absorption,
+            screen_p: s.p,
+            ci,
+            ci_note,
+            ci_ok,
+            change,
+            sens: s.sens,
+            loco_after: None,
+            significant: false,
+            accepted: false,
+            reason: String::new(),
+        });
+    }
+    Ok((out, lost))
+}
+
+/// `Some(v)` for a finite number, `None` otherwise (reports never carry NaN or inf).
+pub(crate) fn finite(v: f64) -> Option<f64> {
+    v.is_finite().then_some(v)
+}
