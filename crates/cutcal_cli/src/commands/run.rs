@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use super::identify::{identify_dpzd, pick_test, DpzdIdentifyReport, DpzdOutcome, DpzdSettings, JcReport, ModelChoice};
 use crate::input::material_file::{load_material, MaterialFile};
-use crate::input::tests_csv::load_tests;
+use crate::input::tests_csv::{parse_tests_with_columns, Columns, MeasuredColumn};
 use crate::input::{parse_toml, read_text};
 use crate::output::StagedDir;
 use crate::report::plots;
@@ -121,8 +121,9 @@ pub struct Comparison {
     pub ours: f64,
     /// Published.
     pub published: f64,
-    /// (ours - published)/published, %.
-    pub diff_pct: f64,
+    /// (ours - published)/published, %; `None` when the published value is zero (no relative
+    /// difference exists).
+    pub diff_pct: Option<f64>,
 }
 
 /// The machine-readable project report.
@@ -177,7 +178,7 @@ fn compare(against: &str, tables: &toml::Table, key: &str, jc: &JcReport) -> Vec
                 parameter: (*p).into(),
                 ours: *ours,
                 published,
-                diff_pct: (ours - published) / published * 100.0,
+                diff_pct: Some((ours - published) / published * 100.0).filter(|d| d.is_finite()),
             })
         })
         .collect()
@@ -195,7 +196,8 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
     let base = project_path.parent().unwrap_or(Path::new("."));
     let mf: MaterialFile = load_material(&resolve(base, &project.material))?;
     let tests_path = resolve(base, &project.tests);
-    let tests = load_tests(&tests_path)?;
+    let (tests, columns) = parse_tests_with_columns(&tests_path, &read_text(&tests_path)?)?;
+    let tests_name = tests_path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
     let reference_jc =
         project.reference_jc.as_ref().map(|p| crate::input::jc_file::load_jc(&resolve(base, p))).transpose()?;
     let tables: Option<toml::Table> = project
@@ -272,12 +274,10 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
                 }
             }
         } else {
-            skipped = Some(format!(
-                "test {} of {} has no measured Fc, Ft and tc in the shipped fixtures (the paper shows them only in its figures); the reference JC set is used downstream",
-                test.id,
-                tests_path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default()
-            ));
+            skipped = Some(dpzd_skip_reason(&tests_name, &columns, Some(test), reference_jc.is_some()));
         }
+    } else {
+        skipped = Some(dpzd_skip_reason(&tests_name, &columns, None, reference_jc.is_some()));
     }
 
     // 2. Comparison with the paper's tables.
@@ -480,6 +480,72 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
     Ok(report)
 }
 
+/// Why the DPZD identification (paper Eq 15, which needs Fc, Ft and tc of one test) did not run:
+/// the columns the tests file lacks, the quantities `test` lacks, or (no `test`) that the project
+/// has no `[identify]` section; and what is used downstream instead.
+fn dpzd_skip_reason(
+    tests_name: &str,
+    columns: &Columns,
+    test: Option<&cutcal_model::CuttingTest>,
+    reference: bool,
+) -> String {
+    let lacking: Vec<&str> = [
+        (MeasuredColumn::CuttingForce, "Fc"),
+        (MeasuredColumn::FeedForce, "Ft"),
+        (MeasuredColumn::ChipThickness, "tc"),
+    ]
+    .into_iter()
+    .filter(|(m, _)| !columns.has(*m))
+    .map(|(_, n)| n)
+    .collect();
+    let mut why = if !lacking.is_empty() {
+        format!(
+            "the DPZD identification (paper Eq 15) needs the measured Fc, Ft and tc of one test, and {tests_name} has no {} column",
+            lacking.join(", ")
+        )
+    } else if let Some(t) = test {
+        let m = &t.measured;
+        let absent: Vec<&str> = [
+            (m.cutting_force_n_per_m.is_none(), "Fc"),
+            (m.feed_force_n_per_m.is_none(), "Ft"),
+            (m.chip_thickness_m.is_none(), "tc"),
+        ]
+        .into_iter()
+        .filter(|(a, _)| *a)
+        .map(|(_, n)| n)
+        .collect();
+        format!(
+            "the DPZD identification (paper Eq 15) needs the measured Fc, Ft and tc of test {}, and its {} cells in {tests_name} are empty",
+            t.id,
+            absent.join(", ")
+        )
+    } else {
+        "the project file has no [identify] section".to_string()
+    };
+    if test.is_none() && !lacking.is_empty() {
+        why.push_str("; the project file has no [identify] section");
+    }
+    why.push_str(if reference {
+        "; the reference JC set is used downstream"
+    } else {
+        "; no JC set is available downstream"
+    });
+    why
+}
+
+/// A condition number for the report, or why there is none.
+fn condition_text(c: Option<f64>) -> String {
+    match c.filter(|v| v.is_finite()) {
+        Some(v) => format!("{v:.3e}"),
+        None => "not available (J^T J is singular on the free parameters)".to_string(),
+    }
+}
+
+/// A relative difference for the report, or why there is none.
+fn diff_text(d: Option<f64>) -> String {
+    d.map_or_else(|| "not available (published value is zero)".to_string(), |v| format!("{v:+.1} %"))
+}
+
 /// The human-readable report.
 #[must_use]
 pub fn render_markdown(r: &ProjectReport) -> String {
@@ -506,10 +572,10 @@ pub fn render_markdown(r: &ProjectReport) -> String {
             if let (Some(se), Some(corr)) = (&i.std_errors, &i.correlation) {
                 let _ = writeln!(
                     s,
-                    "{k}: standard errors of the free parameters {:?} = {:?}; condition number {:.3e}.",
+                    "{k}: standard errors of the free parameters {:?} = {:?}; condition number {}.",
                     i.free,
                     se.iter().map(|v| (v * 1e4).round() / 1e4).collect::<Vec<_>>(),
-                    i.condition_number.unwrap_or(f64::NAN)
+                    condition_text(i.condition_number)
                 );
                 let strong: Vec<String> = (0..i.free.len())
                     .flat_map(|a| (a + 1..i.free.len()).map(move |b| (a, b)))
@@ -530,8 +596,12 @@ pub fn render_markdown(r: &ProjectReport) -> String {
         for c in &r.comparisons {
             let _ = writeln!(
                 s,
-                "| {} | {} | {:.4} | {} | {:+.1} % |",
-                c.against, c.parameter, c.ours, c.published, c.diff_pct
+                "| {} | {} | {:.4} | {} | {} |",
+                c.against,
+                c.parameter,
+                c.ours,
+                c.published,
+                diff_text(c.diff_pct)
             );
         }
         let _ = writeln!(s);
