@@ -81,6 +81,15 @@ pub struct ProjectFile {
     /// Forward predictions of every test with the JC set used (default true).
     #[serde(default = "yes")]
     pub predict: bool,
+    /// Directory of raw force signals `<test>.csv`, relative to the project file (issue 13): the
+    /// tests file then holds the conditions, and the `cutcal recordings` reduction fills in the
+    /// forces and their standard deviations before anything else runs.
+    #[serde(default)]
+    pub signals: Option<PathBuf>,
+    /// Run the discrepancy diagnosis (`cutcal diagnose` Mode B, extended Oxley, the JC set used
+    /// held fixed) on the measured tests (default false).
+    #[serde(default)]
+    pub diagnose: bool,
 }
 
 fn yes() -> bool {
@@ -149,6 +158,12 @@ pub struct ProjectReport {
     pub table6: Vec<FeComparison>,
     /// Joint Oxley identification, when run.
     pub joint: Option<cutcal_ident::joint::OxleyIdentification>,
+    /// Per-test reduction of the raw signals, for a project that starts from signals.
+    pub recordings: Option<Vec<super::recordings::TestSummary>>,
+    /// The discrepancy diagnosis, when the project asks for it.
+    pub diagnosis: Option<super::run_steps::ProjectDiagnosis>,
+    /// Why the diagnosis asked for did not run.
+    pub diagnosis_skipped: Option<String>,
     /// Files written, relative to the output directory.
     pub files: Vec<String>,
 }
@@ -196,8 +211,20 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
     let base = project_path.parent().unwrap_or(Path::new("."));
     let mf: MaterialFile = load_material(&resolve(base, &project.material))?;
     let tests_path = resolve(base, &project.tests);
-    let (tests, columns) = parse_tests_with_columns(&tests_path, &read_text(&tests_path)?)?;
-    let tests_name = tests_path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+    let staged = StagedDir::new(out)?;
+    // 0. A project that starts from signals reduces them into the test rows first.
+    let (tests, columns, tests_name, recordings, mut files) = match &project.signals {
+        Some(sig) => {
+            let rows =
+                super::run_steps::signals_step(&staged, &tests_path, &project.tests, &resolve(base, sig), sig, quiet)?;
+            (rows.tests, rows.columns, super::run_steps::MEASURED_TESTS.to_string(), Some(rows.summaries), rows.files)
+        }
+        None => {
+            let (tests, columns) = parse_tests_with_columns(&tests_path, &read_text(&tests_path)?)?;
+            let name = tests_path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+            (tests, columns, name, None, Vec::new())
+        }
+    };
     let reference_jc =
         project.reference_jc.as_ref().map(|p| crate::input::jc_file::load_jc(&resolve(base, p))).transpose()?;
     let tables: Option<toml::Table> = project
@@ -208,8 +235,6 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
             Ok(parse_toml(&path, &read_text(&path)?)?)
         })
         .transpose()?;
-    let staged = StagedDir::new(out)?;
-    let mut files = Vec::new();
     let mut write = |name: &str, contents: &str| -> Result<()> {
         staged.write(name, contents.as_bytes())?;
         files.push(name.to_string());
@@ -456,6 +481,27 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
         }
     }
 
+    // 6. The discrepancy diagnosis of the measured tests with the JC set used.
+    let (mut diagnosis, mut diagnosis_skipped) = (None, None);
+    if project.diagnose {
+        match &jc_used {
+            Some((src, jc)) => {
+                progress("diagnosing the model-measurement mismatch");
+                let rows = match recordings {
+                    Some(_) => staged.path(super::run_steps::MEASURED_TESTS),
+                    None => tests_path.clone(),
+                };
+                let (d, names) =
+                    super::run_steps::diagnosis_step(&staged, &project.name, mf.path.clone(), rows, (src, jc))?;
+                files.extend(names);
+                diagnosis = Some(d);
+            }
+            None => {
+                diagnosis_skipped = Some("no JC set is available (nothing identified and no reference_jc)".to_string())
+            }
+        }
+    }
+
     let mut report = ProjectReport {
         project: project.name.clone(),
         material: label.clone(),
@@ -467,6 +513,9 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
         predictions,
         table6,
         joint,
+        recordings,
+        diagnosis,
+        diagnosis_skipped,
         files: Vec::new(),
     };
     files.push("report.md".into());
@@ -690,6 +739,51 @@ pub fn render_markdown(r: &ProjectReport) -> String {
             let _ = writeln!(s, "\nCaution: {} residuals for 5 parameters: the set fits these tests but is poorly determined (see the correlations in report.json).", j.relative_errors.len());
         }
         let _ = writeln!(s);
+    }
+    if let Some(rec) = &r.recordings {
+        let _ = writeln!(s, "## Recordings (raw force signals reduced to the test rows)\n");
+        let _ = writeln!(s, "| test | signal | window [s] | Fc [N] | sd | se | Ft [N] | sd | se | wear | BUE |");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|");
+        for t in rec {
+            match &t.analysis {
+                Some(a) => {
+                    let (fc, ft) = (a.channels[0], a.channels[1]);
+                    let _ = writeln!(
+                        s,
+                        "| {} | `{}` | {:.3}-{:.3} | {:.1} | {:.2} | {:.3} | {:.1} | {:.2} | {:.3} | {} | {} |",
+                        t.test,
+                        t.signal,
+                        a.t0_s,
+                        a.t1_s,
+                        fc.mean,
+                        fc.sd,
+                        fc.se,
+                        ft.mean,
+                        ft.sd,
+                        ft.se,
+                        if a.possible_tool_wear { "flagged" } else { "no" },
+                        if a.possible_built_up_edge { "flagged" } else { "no" }
+                    );
+                }
+                None => {
+                    let _ = writeln!(
+                        s,
+                        "| {} | `{}` | not available: {} | | | | | | | | |",
+                        t.test,
+                        t.signal,
+                        t.not_available.as_deref().unwrap_or("no analysis")
+                    );
+                }
+            }
+        }
+        let _ = writeln!(s);
+    }
+    if let Some(d) = &r.diagnosis {
+        let _ = writeln!(s, "## Diagnosis (cutcal diagnose, Mode B, {} held fixed)\n", d.jc_source);
+        let _ = writeln!(s, "```text\n{}```\n", d.text);
+    }
+    if let Some(why) = &r.diagnosis_skipped {
+        let _ = writeln!(s, "## Diagnosis\n\nNot run: {why}.\n");
     }
     let _ = writeln!(s, "## Files\n");
     for f in &r.files {
