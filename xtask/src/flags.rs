@@ -18,6 +18,16 @@ pub enum Task {
     Pipeline(PipelineFlags),
     /// Blind benchmark of discrepancy discovery on concealed mechanisms (issue 6).
     Concealed(ConcealedFlags),
+    /// Write the SYNTHETIC signal set of the signals project (fixtures/signals/c38/).
+    Signals(SignalsFlags),
+}
+
+/// Options of `cargo xtask signals`.
+#[derive(Debug, clap::Args)]
+pub struct SignalsFlags {
+    /// Output directory.
+    #[arg(long, default_value = "fixtures/signals/c38")]
+    pub out: PathBuf,
 }
 
 /// Options of `cargo xtask concealed`.

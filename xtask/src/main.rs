@@ -6,6 +6,7 @@
 mod concealed;
 mod flags;
 mod pipeline;
+mod signals;
 mod tidy;
 
 use std::path::{Path, PathBuf};
@@ -26,6 +27,7 @@ fn main() -> ExitCode {
     }
     let result = match flags.task {
         flags::Task::Pipeline(f) => pipeline::run(&f),
+        flags::Task::Signals(f) => signals::run(&f.out),
         flags::Task::Concealed(f) => concealed::run(&concealed::ConcealedOptions {
             datasets: f.datasets,
             seed: f.seed,

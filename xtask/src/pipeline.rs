@@ -141,7 +141,7 @@ mod tests {
             let rel = f.strip_prefix(&a).unwrap();
             assert_eq!(fs::read(f).unwrap(), fs::read(b.join(rel)).unwrap(), "{} differs between runs", rel.display());
         }
-        for project in ["c38", "42crmo4", "aa6082", "aisi1045"] {
+        for project in ["c38", "42crmo4", "aa6082", "aisi1045", "c38_signals"] {
             let dir = a.join(project);
             let report: serde_json::Value =
                 serde_json::from_slice(&fs::read(dir.join("report.json")).unwrap()).unwrap();
@@ -164,8 +164,8 @@ mod tests {
         );
         // The pipeline's own cards pass the exporter's validators: dynars reads the LS-DYNA deck back
         // with the identified A (report.json), and the MatML document is well-formed XML.
-        for project in ["c38", "42crmo4", "aa6082"] {
-            let deck = a.join(format!("{project}/cards/{project}_lsdyna.k"));
+        for project in ["c38", "42crmo4", "aa6082", "c38_signals"] {
+            let deck = a.join(format!("{project}/cards/{}_lsdyna.k", project.trim_end_matches("_signals")));
             let parsed = dynars::deck::parse_deck(&deck).unwrap_or_else(|e| panic!("{}: {e}", deck.display()));
             let file = parsed.files().next().unwrap();
             let jc = file.keywords().find(|k| k.base() == "MAT_JOHNSON_COOK").expect("MAT_JOHNSON_COOK parsed");
@@ -174,9 +174,38 @@ mod tests {
                 serde_json::from_slice(&fs::read(a.join(format!("{project}/report.json"))).unwrap()).unwrap();
             let want = report["jc_used"][1]["a_mpa"].as_f64().unwrap();
             assert!((a_mpa - want).abs() <= 1e-5 * want, "{project}: deck A {a_mpa} vs report {want}");
-            let matml = a.join(format!("{project}/cards/{project}_matml.xml"));
+            let matml = a.join(format!("{project}/cards/{}_matml.xml", project.trim_end_matches("_signals")));
             let _ = svg_series(&matml); // well-formed (the helper panics otherwise)
         }
+        // No output carries a NaN or an infinity (issue 13): a missing number is "not available"
+        // with its reason. serde_json writes non-finite floats as null, Rust's formatting as
+        // `NaN`/`inf`, so the text is scanned for those tokens.
+        for f in &fa {
+            let text = fs::read_to_string(f).unwrap_or_default();
+            for tok in text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')) {
+                let t = tok.to_ascii_lowercase();
+                assert!(!matches!(t.as_str(), "nan" | "inf" | "infinity"), "{}: contains `{tok}`", f.display());
+            }
+        }
+        // A skipped DPZD identification says why (AISI 1045: no chip thickness column).
+        let md = fs::read_to_string(a.join("aisi1045/report.md")).unwrap();
+        assert!(md.contains("Not run: the DPZD identification (paper Eq 15) needs the measured Fc, Ft and tc of one test, and aisi1045.csv has no tc column"), "{md}");
+        // The signals project: signals -> rows -> identification -> cards -> diagnosis. The rows
+        // hold the reduced means: the SYNTHETIC signals are built at Table 6's 224 and 186 N/mm.
+        let s: serde_json::Value =
+            serde_json::from_slice(&fs::read(a.join("c38_signals/report.json")).unwrap()).unwrap();
+        let rec = s["recordings"].as_array().unwrap();
+        assert_eq!(rec.iter().filter(|r| r["analysis"].is_object()).count(), 3);
+        let rows = cutcal_cli::input::tests_csv::load_tests(&a.join("c38_signals/measured_tests.csv")).unwrap();
+        let t3 = rows.iter().find(|t| t.id == "3").unwrap();
+        for (got, want) in [(t3.measured.cutting_force_n_per_m, 224e3), (t3.measured.feed_force_n_per_m, 186e3)] {
+            assert!((got.unwrap() / want - 1.0).abs() < 0.005, "{got:?} vs {want}");
+        }
+        assert!(t3.measured.sd.cutting_force_n_per_m.is_some());
+        assert!(s["identification"]["enhanced"]["jc"]["a_mpa"].as_f64().is_some());
+        assert!(a.join("c38_signals/cards/c38_abaqus_jc.inp").is_file());
+        assert!(s["diagnosis"]["report"].is_object(), "the signals project runs the diagnosis");
+        assert!(fs::read_to_string(a.join("c38_signals/report.md")).unwrap().contains("## Diagnosis"));
         // C38 identification in the report: Table 4 original A within 2 % (paper: 671 MPa).
         let r: serde_json::Value = serde_json::from_slice(&fs::read(a.join("c38/report.json")).unwrap()).unwrap();
         let a_orig = r["identification"]["original"]["jc"]["a_mpa"].as_f64().unwrap();

@@ -30,5 +30,5 @@ pub mod reference;
 pub use cutting_test::{CuttingTest, Measured, MeasuredSd};
 pub use error::ModelError;
 pub use jc::{JcParams, RateTerm};
-pub use material::{Elastic, Friction, Interface, Material, ThermalProperties};
+pub use material::{Elastic, Friction, Interface, Material, ThermalProperties, YieldStrengthDefect};
 pub use poly::TempPolynomial;

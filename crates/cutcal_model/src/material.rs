@@ -254,6 +254,84 @@ pub struct Interface {
     pub heat_transfer_w_per_m2_k: f64,
 }
 
+/// Why a yield-strength law sigma0(T) is not usable over a temperature range (issue 11): the
+/// paper's Table 3 cubics are fits with no stated range, and outside the range they were fitted
+/// on they can reach zero (C38/42CrMo4 near 980 degC) or rise again after a minimum (AA6082 above
+/// 405 degC), which no metal does between room temperature and melting.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum YieldStrengthDefect {
+    /// sigma0 is zero or negative (or not finite) at `at_c`.
+    NonPositive {
+        /// First sampled temperature where it happens, degC.
+        at_c: f64,
+        /// sigma0 there, Pa.
+        value_pa: f64,
+    },
+    /// sigma0 rises above its running minimum by more than 1 %.
+    Rises {
+        /// Temperature of the minimum, degC.
+        minimum_c: f64,
+        /// sigma0 at the minimum, Pa.
+        minimum_pa: f64,
+        /// First sampled temperature where sigma0 exceeds the minimum by more than 1 %, degC.
+        at_c: f64,
+        /// sigma0 there, Pa.
+        value_pa: f64,
+    },
+}
+
+/// Relative rise of sigma0 above its running minimum that [`Material::check_yield_strength`]
+/// tolerates as fit scatter.
+pub const RISE_TOLERANCE: f64 = 0.01;
+
+impl std::fmt::Display for YieldStrengthDefect {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Self::NonPositive { at_c, value_pa } => {
+                write!(f, "sigma0({at_c} degC) = {:.2} MPa is not positive", value_pa / 1e6)
+            }
+            Self::Rises { minimum_c, minimum_pa, at_c, value_pa } => write!(
+                f,
+                "sigma0 falls to {:.2} MPa at {minimum_c} degC and rises again to {:.2} MPa at {at_c} degC (a yield strength does not increase with temperature)",
+                minimum_pa / 1e6,
+                value_pa / 1e6
+            ),
+        }
+    }
+}
+
+impl Material {
+    /// Checks that the yield-strength law sigma0(T) is positive and non-increasing over
+    /// `[from_c, to_c]` degC, sampled every 1 K (both ends included); `Ok` if the material has no
+    /// law. A rise counts when sigma0 exceeds its running minimum by more than 1 % of it: a smaller
+    /// one is within a fit's scatter (the Table 3 AA6082 cubic rises 0.75 % from 256.63 MPa at
+    /// 20 degC to 258.56 MPa at its local maximum, 39.3 degC, then falls).
+    ///
+    /// Ported from `Material::check_yield_strength` of the issue-11 branch (commit 930bda7), which
+    /// compared the rise with the global minimum only; the running minimum also catches a bump
+    /// before a lower minimum. The law is the paper's Table 3 polynomial.
+    pub fn check_yield_strength(&self, from_c: f64, to_c: f64) -> Result<(), YieldStrengthDefect> {
+        let Some(law) = self.yield_strength.as_ref() else { return Ok(()) };
+        let steps = (to_c - from_c).max(0.0).ceil().min(1e6) as usize;
+        let mut running: Option<(f64, f64)> = None;
+        for i in 0..=steps {
+            let t = if steps == 0 { from_c } else { from_c + (to_c - from_c) * i as f64 / steps as f64 };
+            let v = law.value(t);
+            if !(v.is_finite() && v > 0.0) {
+                return Err(YieldStrengthDefect::NonPositive { at_c: t, value_pa: v });
+            }
+            match running {
+                Some((tm, vm)) if v > vm * (1.0 + RISE_TOLERANCE) => {
+                    return Err(YieldStrengthDefect::Rises { minimum_c: tm, minimum_pa: vm, at_c: t, value_pa: v })
+                }
+                Some((_, vm)) if v >= vm => {}
+                _ => running = Some((t, v)),
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Shared test data.
 #[cfg(test)]
 pub(crate) mod tests_support {
@@ -302,6 +380,50 @@ mod tests {
         let q = m.heat_content_j_per_m3(20.0, 1460.0) * 1.01;
         assert!(matches!(m.temperature_after_heating(20.0, q), Err(ModelError::AboveMelting { .. })));
         assert!(m.temperature_after_heating(20.0, f64::NAN).is_err());
+    }
+
+    #[test]
+    fn c38_sigma0_cubic_reaches_zero_inside_its_thermal_range() {
+        // Table 3 C38 sigma0 = 773.007 - 1.630 T + 0.0038 T^2 - 3.001e-6 T^3 MPa has its one real
+        // root at T = 980.22 degC (numpy.roots of the cubic); its derivative -1.630 + 0.0076 T -
+        // 9.003e-6 T^2 has no real root (0.0076^2 < 4 * 9.003e-6 * 1.630), so it only falls.
+        let m = c38();
+        match m.check_yield_strength(20.0, 1200.0) {
+            Err(YieldStrengthDefect::NonPositive { at_c, value_pa }) => {
+                assert_eq!(at_c, 981.0);
+                assert!(value_pa <= 0.0);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(m.check_yield_strength(20.0, 980.0), Ok(()));
+    }
+
+    #[test]
+    fn aa6082_sigma0_cubic_rises_after_its_minimum() {
+        // Table 3 AA6082 sigma0 = 250.258 + 0.437 T - 0.0061 T^2 + 9.155e-6 T^3 MPa: dsigma/dT = 0 at
+        // T = (0.0122 + sqrt(0.0122^2 - 4*2.7465e-5*0.437)) / (2*2.7465e-5) = 405.0 degC, where
+        // sigma0 = 34.86 MPa (hand evaluation; the issue-11 branch's test, commit 930bda7).
+        let mut m = c38();
+        m.yield_strength = Some(TempPolynomial::new(vec![250.258, 0.437, -0.0061, 9.155e-6]).unwrap().scaled(1e6));
+        m.melting_c = 582.0;
+        match m.check_yield_strength(20.0, 560.0) {
+            Err(YieldStrengthDefect::Rises { minimum_c, minimum_pa, at_c, value_pa }) => {
+                assert!((minimum_c - 405.0).abs() <= 1.0, "{minimum_c}");
+                assert!((minimum_pa / 1e6 - 34.86).abs() < 0.01, "{minimum_pa}");
+                assert!(at_c > minimum_c && value_pa > minimum_pa * 1.01, "{at_c} {value_pa}");
+            }
+            other => panic!("{other:?}"),
+        }
+        // Its 0.75 % rise from 20 to 39.3 degC (dsigma/dT = 0 at (0.0122 - sqrt(...)) / 5.493e-5)
+        // is within the tolerance; a stricter one would flag it.
+        assert_eq!(m.check_yield_strength(20.0, 400.0), Ok(()));
+        let s20 = 250.258 + 0.437 * 20.0 - 0.0061 * 400.0 + 9.155e-6 * 8000.0;
+        let t1 = (0.0122 - (0.0122f64.powi(2) - 4.0 * 2.7465e-5 * 0.437).sqrt()) / (2.0 * 2.7465e-5);
+        let s1 = 250.258 + 0.437 * t1 - 0.0061 * t1 * t1 + 9.155e-6 * t1.powi(3);
+        assert!((t1 - 39.3).abs() < 0.1 && (s1 / s20 - 1.0 - 0.0075).abs() < 0.0005, "{t1} {s20} {s1}");
+        // sigma0 = 100 - 0.2 T + 0.002 T^2 MPa: d/dT = -0.2 + 0.004 T = 0 at 50 degC, inside [0, 100].
+        m.yield_strength = Some(TempPolynomial::new(vec![100.0, -0.2, 0.002]).unwrap().scaled(1e6));
+        assert!(matches!(m.check_yield_strength(0.0, 100.0), Err(YieldStrengthDefect::Rises { .. })));
     }
 
     #[test]

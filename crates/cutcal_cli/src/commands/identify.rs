@@ -14,7 +14,7 @@ use cutcal_model::{CuttingTest, RateTerm};
 use serde::Serialize;
 
 use crate::input::material_file::{load_material, MaterialFile};
-use crate::input::tests_csv::load_tests;
+use crate::input::tests_csv::{load_tests_measuring, MeasuredColumn};
 use crate::output::write_atomic;
 
 /// Which DPZD model.
@@ -471,7 +471,11 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
         });
     }
     let mf = load_material(&args.material)?;
-    let tests = load_tests(&args.tests)?;
+    let tests = load_tests_measuring(
+        &args.tests,
+        &[MeasuredColumn::CuttingForce, MeasuredColumn::FeedForce, MeasuredColumn::ChipThickness],
+        "the DPZD identification (paper Eq 15) needs the measured Fc, Ft and tc",
+    )?;
     let test = pick_test(&tests, args.test.as_deref(), &mf, &args.tests)?;
     let settings = settings_from_args(args, &mf)?;
     let out = identify_dpzd(&mf, test, &settings)?;

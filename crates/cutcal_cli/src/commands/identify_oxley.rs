@@ -18,7 +18,7 @@ use cutcal_model::oxley::Physics;
 use crate::commands::identify::jc_bounds;
 use crate::commands::predict::oxley_options;
 use crate::input::material_file::load_material;
-use crate::input::tests_csv::load_tests;
+use crate::input::tests_csv::{load_tests_measuring, MeasuredColumn};
 
 /// Arguments of `cutcal identify --method oxley` (the dispatcher passes them through).
 #[derive(Debug, Clone, clap::Args)]
@@ -99,7 +99,11 @@ pub fn table(material: &str, id: &OxleyIdentification) -> String {
 /// Runs the joint identification.
 pub fn run(args: &IdentifyOxleyArgs) -> Result<()> {
     let mf = load_material(&args.material)?;
-    let tests = load_tests(&args.tests)?;
+    let tests = load_tests_measuring(
+        &args.tests,
+        &[MeasuredColumn::CuttingForce, MeasuredColumn::FeedForce],
+        "the joint Oxley identification needs measured Fc and Ft (tc where measured)",
+    )?;
     let bounds = jc_bounds(&mf)?;
     let oxley = oxley_options(mf.oxley.as_ref(), false, None, None, None, None, None)
         .with_context(|| format!("Oxley options for {}", args.material.display()))?;

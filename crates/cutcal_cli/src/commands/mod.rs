@@ -8,3 +8,4 @@ pub mod identify_oxley;
 pub mod predict;
 pub mod recordings;
 pub mod run;
+pub mod run_steps;

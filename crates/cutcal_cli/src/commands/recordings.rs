@@ -73,40 +73,52 @@ fn parse_window(s: &str) -> Result<(f64, f64)> {
     Ok((t0, t1))
 }
 
-/// Runs `cutcal recordings`.
-pub fn run(a: &RecordingsArgs) -> Result<()> {
-    let tests = load_tests(&a.tests)?;
-    let map = match &a.channels {
-        Some(s) => ChannelMap::parse(s).map_err(|e| anyhow::anyhow!("--channels: {e}"))?,
-        None => ChannelMap::default(),
-    };
-    let window = a.window.as_deref().map(parse_window).transpose()?;
-    if !a.signals.is_dir() {
-        bail!("--signals {}: not a directory", a.signals.display());
+/// Every test of a tests file reduced from its signal file.
+#[derive(Debug)]
+pub struct Recorded {
+    /// One summary per row of the tests file.
+    pub summaries: Vec<TestSummary>,
+    /// The reduced signal of each row, where it has a file.
+    pub files: Vec<Option<SignalFile>>,
+    /// The tests CSV with the measured columns filled in.
+    pub csv: String,
+}
+
+/// Reduces the signal `<signals>/<test>.csv` of every row of `tests` (streaming; steady window
+/// detected unless `window` is given) and writes the measured columns into the tests CSV text.
+/// `shown` names a file in summaries and messages (the command shows the path as given; a
+/// project shows it relative to the project, so its outputs carry no absolute path).
+///
+/// Returns an error if a signal file is malformed (located), or if no row could be measured.
+pub fn reduce_signals(
+    tests_path: &Path,
+    signals: &Path,
+    map: &ChannelMap,
+    window: Option<(f64, f64)>,
+    quiet: bool,
+    shown: &dyn Fn(&Path) -> String,
+) -> Result<Recorded> {
+    let tests = load_tests(tests_path)?;
+    if !signals.is_dir() {
+        bail!("signals {}: not a directory", shown(signals));
     }
     let cfg = AnalysisConfig::default();
-    let bar = crate::progress::bar(tests.len() as u64, "recordings", a.quiet);
+    let bar = crate::progress::bar(tests.len() as u64, "recordings", quiet);
     let mut summaries = Vec::new();
     let mut files: Vec<Option<SignalFile>> = Vec::new();
     for t in &tests {
-        let p = a.signals.join(format!("{}.csv", t.id));
+        let p = signals.join(format!("{}.csv", t.id));
         let width_mm = t.width_m * 1e3;
         let (analysis, why, file) = if p.is_file() {
-            let sig = read_signal(&p, &map, |_| {})?;
+            let sig = read_signal(&p, map, |_| {})?;
             match analyse(&sig.reduced, &cfg, window) {
                 Ok(an) => (Some(an), None, Some(sig)),
-                Err(e) => (None, Some(format!("{}: {e}", p.display())), Some(sig)),
+                Err(e) => (None, Some(format!("{}: {e}", shown(&p))), Some(sig)),
             }
         } else {
-            (None, Some(format!("no signal file {}", p.display())), None)
+            (None, Some(format!("no signal file {}", shown(&p))), None)
         };
-        summaries.push(TestSummary {
-            test: t.id.clone(),
-            signal: p.display().to_string(),
-            width_mm,
-            analysis,
-            not_available: why,
-        });
+        summaries.push(TestSummary { test: t.id.clone(), signal: shown(&p), width_mm, analysis, not_available: why });
         files.push(file);
         bar.inc(1);
     }
@@ -115,8 +127,23 @@ pub fn run(a: &RecordingsArgs) -> Result<()> {
         let reasons: Vec<String> = summaries.iter().filter_map(|s| s.not_available.clone()).collect();
         bail!("no test could be measured:\n  {}", reasons.join("\n  "));
     }
+    let csv = rewrite_tests_csv(tests_path, &shown(tests_path), &summaries)?;
+    Ok(Recorded { summaries, files, csv })
+}
+
+/// Runs `cutcal recordings`.
+pub fn run(a: &RecordingsArgs) -> Result<()> {
+    let map = match &a.channels {
+        Some(s) => ChannelMap::parse(s).map_err(|e| anyhow::anyhow!("--channels: {e}"))?,
+        None => ChannelMap::default(),
+    };
+    let window = a.window.as_deref().map(parse_window).transpose()?;
+    if !a.signals.is_dir() {
+        bail!("--signals {}: not a directory", a.signals.display());
+    }
+    let Recorded { summaries, files, csv } =
+        reduce_signals(&a.tests, &a.signals, &map, window, a.quiet, &|p| p.display().to_string())?;
     let out = a.out.clone().unwrap_or_else(|| default_out(&a.tests));
-    let csv = rewrite_tests_csv(&a.tests, &summaries)?;
     write_atomic(&out, csv.as_bytes())?;
     let json = serde_json::to_string_pretty(&summaries)?;
     write_atomic(&out.with_extension("json"), json.as_bytes())?;
@@ -148,8 +175,9 @@ fn fmt(x: f64) -> String {
     }
 }
 
-/// The input CSV with the force, sd and flag columns set (added when absent) for measured rows.
-fn rewrite_tests_csv(path: &Path, summaries: &[TestSummary]) -> Result<String> {
+/// The input CSV with the force, sd and flag columns set (added when absent) for measured rows;
+/// `shown` names the input in the header comment.
+fn rewrite_tests_csv(path: &Path, shown: &str, summaries: &[TestSummary]) -> Result<String> {
     let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
     let mut rdr = csv::ReaderBuilder::new().comment(Some(b'#')).trim(csv::Trim::All).from_reader(text.as_bytes());
@@ -196,10 +224,12 @@ fn rewrite_tests_csv(path: &Path, summaries: &[TestSummary]) -> Result<String> {
         w.write_record(&cells)?;
     }
     let body = String::from_utf8(w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?)?;
-    Ok(format!("# written by cutcal recordings from {} (forces: steady-window means; *_sd_*: sample sd over the window)\n{body}", path.display()))
+    Ok(format!("# written by cutcal recordings from {shown} (forces: steady-window means; *_sd_*: sample sd over the window)\n{body}"))
 }
 
-fn plot(s: &TestSummary, an: &Analysis, f: &SignalFile) -> String {
+/// The SVG of one test: Fc, Ft envelopes, the window and the Fc mean +- sd band.
+#[must_use]
+pub fn plot(s: &TestSummary, an: &Analysis, f: &SignalFile) -> String {
     let r = &f.reduced;
     let step = r.len().div_ceil(2000).max(1);
     let pts = |c: usize| -> Vec<(f64, f64)> {

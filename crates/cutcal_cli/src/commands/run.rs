@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use super::identify::{identify_dpzd, pick_test, DpzdIdentifyReport, DpzdOutcome, DpzdSettings, JcReport, ModelChoice};
 use crate::input::material_file::{load_material, MaterialFile};
-use crate::input::tests_csv::load_tests;
+use crate::input::tests_csv::{parse_tests_with_columns, Columns, MeasuredColumn};
 use crate::input::{parse_toml, read_text};
 use crate::output::StagedDir;
 use crate::report::plots;
@@ -81,6 +81,15 @@ pub struct ProjectFile {
     /// Forward predictions of every test with the JC set used (default true).
     #[serde(default = "yes")]
     pub predict: bool,
+    /// Directory of raw force signals `<test>.csv`, relative to the project file (issue 13): the
+    /// tests file then holds the conditions, and the `cutcal recordings` reduction fills in the
+    /// forces and their standard deviations before anything else runs.
+    #[serde(default)]
+    pub signals: Option<PathBuf>,
+    /// Run the discrepancy diagnosis (`cutcal diagnose` Mode B, extended Oxley, the JC set used
+    /// held fixed) on the measured tests (default false).
+    #[serde(default)]
+    pub diagnose: bool,
 }
 
 fn yes() -> bool {
@@ -121,8 +130,9 @@ pub struct Comparison {
     pub ours: f64,
     /// Published.
     pub published: f64,
-    /// (ours - published)/published, %.
-    pub diff_pct: f64,
+    /// (ours - published)/published, %; `None` when the published value is zero (no relative
+    /// difference exists).
+    pub diff_pct: Option<f64>,
 }
 
 /// The machine-readable project report.
@@ -148,6 +158,12 @@ pub struct ProjectReport {
     pub table6: Vec<FeComparison>,
     /// Joint Oxley identification, when run.
     pub joint: Option<cutcal_ident::joint::OxleyIdentification>,
+    /// Per-test reduction of the raw signals, for a project that starts from signals.
+    pub recordings: Option<Vec<super::recordings::TestSummary>>,
+    /// The discrepancy diagnosis, when the project asks for it.
+    pub diagnosis: Option<super::run_steps::ProjectDiagnosis>,
+    /// Why the diagnosis asked for did not run.
+    pub diagnosis_skipped: Option<String>,
     /// Files written, relative to the output directory.
     pub files: Vec<String>,
 }
@@ -177,7 +193,7 @@ fn compare(against: &str, tables: &toml::Table, key: &str, jc: &JcReport) -> Vec
                 parameter: (*p).into(),
                 ours: *ours,
                 published,
-                diff_pct: (ours - published) / published * 100.0,
+                diff_pct: Some((ours - published) / published * 100.0).filter(|d| d.is_finite()),
             })
         })
         .collect()
@@ -195,7 +211,20 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
     let base = project_path.parent().unwrap_or(Path::new("."));
     let mf: MaterialFile = load_material(&resolve(base, &project.material))?;
     let tests_path = resolve(base, &project.tests);
-    let tests = load_tests(&tests_path)?;
+    let staged = StagedDir::new(out)?;
+    // 0. A project that starts from signals reduces them into the test rows first.
+    let (tests, columns, tests_name, recordings, mut files) = match &project.signals {
+        Some(sig) => {
+            let rows =
+                super::run_steps::signals_step(&staged, &tests_path, &project.tests, &resolve(base, sig), sig, quiet)?;
+            (rows.tests, rows.columns, super::run_steps::MEASURED_TESTS.to_string(), Some(rows.summaries), rows.files)
+        }
+        None => {
+            let (tests, columns) = parse_tests_with_columns(&tests_path, &read_text(&tests_path)?)?;
+            let name = tests_path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+            (tests, columns, name, None, Vec::new())
+        }
+    };
     let reference_jc =
         project.reference_jc.as_ref().map(|p| crate::input::jc_file::load_jc(&resolve(base, p))).transpose()?;
     let tables: Option<toml::Table> = project
@@ -206,8 +235,6 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
             Ok(parse_toml(&path, &read_text(&path)?)?)
         })
         .transpose()?;
-    let staged = StagedDir::new(out)?;
-    let mut files = Vec::new();
     let mut write = |name: &str, contents: &str| -> Result<()> {
         staged.write(name, contents.as_bytes())?;
         files.push(name.to_string());
@@ -272,12 +299,10 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
                 }
             }
         } else {
-            skipped = Some(format!(
-                "test {} of {} has no measured Fc, Ft and tc in the shipped fixtures (the paper shows them only in its figures); the reference JC set is used downstream",
-                test.id,
-                tests_path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default()
-            ));
+            skipped = Some(dpzd_skip_reason(&tests_name, &columns, Some(test), reference_jc.is_some()));
         }
+    } else {
+        skipped = Some(dpzd_skip_reason(&tests_name, &columns, None, reference_jc.is_some()));
     }
 
     // 2. Comparison with the paper's tables.
@@ -456,6 +481,27 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
         }
     }
 
+    // 6. The discrepancy diagnosis of the measured tests with the JC set used.
+    let (mut diagnosis, mut diagnosis_skipped) = (None, None);
+    if project.diagnose {
+        match &jc_used {
+            Some((src, jc)) => {
+                progress("diagnosing the model-measurement mismatch");
+                let rows = match recordings {
+                    Some(_) => staged.path(super::run_steps::MEASURED_TESTS),
+                    None => tests_path.clone(),
+                };
+                let (d, names) =
+                    super::run_steps::diagnosis_step(&staged, &project.name, mf.path.clone(), rows, (src, jc))?;
+                files.extend(names);
+                diagnosis = Some(d);
+            }
+            None => {
+                diagnosis_skipped = Some("no JC set is available (nothing identified and no reference_jc)".to_string())
+            }
+        }
+    }
+
     let mut report = ProjectReport {
         project: project.name.clone(),
         material: label.clone(),
@@ -467,6 +513,9 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
         predictions,
         table6,
         joint,
+        recordings,
+        diagnosis,
+        diagnosis_skipped,
         files: Vec::new(),
     };
     files.push("report.md".into());
@@ -478,6 +527,72 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
     staged.commit()?;
     progress(&format!("wrote {} files to {}", report.files.len(), out.display()));
     Ok(report)
+}
+
+/// Why the DPZD identification (paper Eq 15, which needs Fc, Ft and tc of one test) did not run:
+/// the columns the tests file lacks, the quantities `test` lacks, or (no `test`) that the project
+/// has no `[identify]` section; and what is used downstream instead.
+fn dpzd_skip_reason(
+    tests_name: &str,
+    columns: &Columns,
+    test: Option<&cutcal_model::CuttingTest>,
+    reference: bool,
+) -> String {
+    let lacking: Vec<&str> = [
+        (MeasuredColumn::CuttingForce, "Fc"),
+        (MeasuredColumn::FeedForce, "Ft"),
+        (MeasuredColumn::ChipThickness, "tc"),
+    ]
+    .into_iter()
+    .filter(|(m, _)| !columns.has(*m))
+    .map(|(_, n)| n)
+    .collect();
+    let mut why = if !lacking.is_empty() {
+        format!(
+            "the DPZD identification (paper Eq 15) needs the measured Fc, Ft and tc of one test, and {tests_name} has no {} column",
+            lacking.join(", ")
+        )
+    } else if let Some(t) = test {
+        let m = &t.measured;
+        let absent: Vec<&str> = [
+            (m.cutting_force_n_per_m.is_none(), "Fc"),
+            (m.feed_force_n_per_m.is_none(), "Ft"),
+            (m.chip_thickness_m.is_none(), "tc"),
+        ]
+        .into_iter()
+        .filter(|(a, _)| *a)
+        .map(|(_, n)| n)
+        .collect();
+        format!(
+            "the DPZD identification (paper Eq 15) needs the measured Fc, Ft and tc of test {}, and its {} cells in {tests_name} are empty",
+            t.id,
+            absent.join(", ")
+        )
+    } else {
+        "the project file has no [identify] section".to_string()
+    };
+    if test.is_none() && !lacking.is_empty() {
+        why.push_str("; the project file has no [identify] section");
+    }
+    why.push_str(if reference {
+        "; the reference JC set is used downstream"
+    } else {
+        "; no JC set is available downstream"
+    });
+    why
+}
+
+/// A condition number for the report, or why there is none.
+fn condition_text(c: Option<f64>) -> String {
+    match c.filter(|v| v.is_finite()) {
+        Some(v) => format!("{v:.3e}"),
+        None => "not available (J^T J is singular on the free parameters)".to_string(),
+    }
+}
+
+/// A relative difference for the report, or why there is none.
+fn diff_text(d: Option<f64>) -> String {
+    d.map_or_else(|| "not available (published value is zero)".to_string(), |v| format!("{v:+.1} %"))
 }
 
 /// The human-readable report.
@@ -506,10 +621,10 @@ pub fn render_markdown(r: &ProjectReport) -> String {
             if let (Some(se), Some(corr)) = (&i.std_errors, &i.correlation) {
                 let _ = writeln!(
                     s,
-                    "{k}: standard errors of the free parameters {:?} = {:?}; condition number {:.3e}.",
+                    "{k}: standard errors of the free parameters {:?} = {:?}; condition number {}.",
                     i.free,
                     se.iter().map(|v| (v * 1e4).round() / 1e4).collect::<Vec<_>>(),
-                    i.condition_number.unwrap_or(f64::NAN)
+                    condition_text(i.condition_number)
                 );
                 let strong: Vec<String> = (0..i.free.len())
                     .flat_map(|a| (a + 1..i.free.len()).map(move |b| (a, b)))
@@ -530,8 +645,12 @@ pub fn render_markdown(r: &ProjectReport) -> String {
         for c in &r.comparisons {
             let _ = writeln!(
                 s,
-                "| {} | {} | {:.4} | {} | {:+.1} % |",
-                c.against, c.parameter, c.ours, c.published, c.diff_pct
+                "| {} | {} | {:.4} | {} | {} |",
+                c.against,
+                c.parameter,
+                c.ours,
+                c.published,
+                diff_text(c.diff_pct)
             );
         }
         let _ = writeln!(s);
@@ -620,6 +739,51 @@ pub fn render_markdown(r: &ProjectReport) -> String {
             let _ = writeln!(s, "\nCaution: {} residuals for 5 parameters: the set fits these tests but is poorly determined (see the correlations in report.json).", j.relative_errors.len());
         }
         let _ = writeln!(s);
+    }
+    if let Some(rec) = &r.recordings {
+        let _ = writeln!(s, "## Recordings (raw force signals reduced to the test rows)\n");
+        let _ = writeln!(s, "| test | signal | window [s] | Fc [N] | sd | se | Ft [N] | sd | se | wear | BUE |");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|");
+        for t in rec {
+            match &t.analysis {
+                Some(a) => {
+                    let (fc, ft) = (a.channels[0], a.channels[1]);
+                    let _ = writeln!(
+                        s,
+                        "| {} | `{}` | {:.3}-{:.3} | {:.1} | {:.2} | {:.3} | {:.1} | {:.2} | {:.3} | {} | {} |",
+                        t.test,
+                        t.signal,
+                        a.t0_s,
+                        a.t1_s,
+                        fc.mean,
+                        fc.sd,
+                        fc.se,
+                        ft.mean,
+                        ft.sd,
+                        ft.se,
+                        if a.possible_tool_wear { "flagged" } else { "no" },
+                        if a.possible_built_up_edge { "flagged" } else { "no" }
+                    );
+                }
+                None => {
+                    let _ = writeln!(
+                        s,
+                        "| {} | `{}` | not available: {} | | | | | | | | |",
+                        t.test,
+                        t.signal,
+                        t.not_available.as_deref().unwrap_or("no analysis")
+                    );
+                }
+            }
+        }
+        let _ = writeln!(s);
+    }
+    if let Some(d) = &r.diagnosis {
+        let _ = writeln!(s, "## Diagnosis (cutcal diagnose, Mode B, {} held fixed)\n", d.jc_source);
+        let _ = writeln!(s, "```text\n{}```\n", d.text);
+    }
+    if let Some(why) = &r.diagnosis_skipped {
+        let _ = writeln!(s, "## Diagnosis\n\nNot run: {why}.\n");
     }
     let _ = writeln!(s, "## Files\n");
     for f in &r.files {

@@ -21,6 +21,21 @@ pub struct RawLaw {
     pub source: Option<String>,
 }
 
+/// The yield-strength law as written: a [`RawLaw`] with its own optional validity range (default:
+/// the thermal range), over which it must be positive and non-increasing.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawYieldLaw {
+    unit: String,
+    coefficients: Vec<f64>,
+    #[serde(default)]
+    source: Option<String>,
+    #[serde(default)]
+    valid_from_c: Option<f64>,
+    #[serde(default)]
+    valid_to_c: Option<f64>,
+}
+
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawThermal {
@@ -110,7 +125,7 @@ struct RawMaterial {
     room_c: f64,
     thermal: RawThermal,
     #[serde(default)]
-    yield_strength: Option<RawLaw>,
+    yield_strength: Option<RawYieldLaw>,
     #[serde(default)]
     elastic: Option<RawElastic>,
     #[serde(default)]
@@ -148,6 +163,11 @@ pub struct MaterialFile {
     /// Forward-model settings table, passed through to the forward model's own reader.
     pub oxley: Option<toml::Table>,
 }
+
+/// Room (reference) temperatures a material file can plausibly mean, degC: a conditioned shop
+/// or laboratory, with a wide margin. Used only to decide which of `room_c` and `melting_c` an
+/// inconsistent pair blames.
+const ROOM_PLAUSIBLE_C: (f64, f64) = (-50.0, 100.0);
 
 fn convert(
     path: &Path,
@@ -188,6 +208,48 @@ fn convert(
         ));
     }
     Ok(poly)
+}
+
+/// Checks the yield-strength law over its validity range (`yield_strength.valid_from_c`,
+/// `valid_to_c`, each defaulting to the thermal range's end): the range inside (-273.15 degC,
+/// melting], and sigma0 positive and non-increasing over it
+/// ([`Material::check_yield_strength`]), with the error at the coefficients.
+fn check_yield_range(path: &Path, text: &str, material: &Material, y: &RawYieldLaw) -> Result<(), InputError> {
+    let thermal = &material.thermal;
+    let (from, to) = (y.valid_from_c.unwrap_or(thermal.valid_from_c), y.valid_to_c.unwrap_or(thermal.valid_to_c));
+    for (key, given) in [("yield_strength.valid_from_c", y.valid_from_c), ("yield_strength.valid_to_c", y.valid_to_c)] {
+        if let Some(v) = given {
+            check_finite(path, text, key, v)?;
+        }
+    }
+    if !(from > -273.15 && from < to && to <= material.melting_c) {
+        let key = if y.valid_to_c.is_some() { "yield_strength.valid_to_c" } else { "yield_strength.valid_from_c" };
+        return Err(InputError::new(
+            path,
+            toml_key_line(text, key).or_else(|| toml_key_line(text, "yield_strength")),
+            key,
+            format!("[{from}, {to}]"),
+            format!(
+                "the yield-strength range must satisfy -273.15 < from < to <= melting_c = {} degC",
+                material.melting_c
+            ),
+        ));
+    }
+    material.check_yield_strength(from, to).map_err(|defect| {
+        let range = if y.valid_from_c.is_some() || y.valid_to_c.is_some() {
+            "its stated range".to_string()
+        } else {
+            "the thermal range (no yield_strength.valid_to_c given; state the range the fit holds for there)"
+                .to_string()
+        };
+        InputError::new(
+            path,
+            toml_key_line(text, "yield_strength.coefficients").or_else(|| toml_key_line(text, "yield_strength")),
+            "yield_strength.coefficients",
+            format!("{:?}", y.coefficients),
+            format!("{defect}: sigma0(T) must be positive and non-increasing over [{from}, {to}] degC, {range}"),
+        )
+    })
 }
 
 /// Checks that a law is finite and positive over `[from, to]` degC (sampled every 10 K, like
@@ -255,13 +317,22 @@ pub fn parse_material(path: &Path, text: &str) -> Result<MaterialFile, InputErro
         ));
     }
     if raw.melting_c <= raw.room_c {
+        // Which of the two is wrong: a room (reference) temperature outside the range any shop or
+        // laboratory works at is the typo; otherwise the melting temperature is (no metal that is
+        // cut melts at or below room temperature).
+        let (field, value, other, other_value) = if (ROOM_PLAUSIBLE_C.0..=ROOM_PLAUSIBLE_C.1).contains(&raw.room_c) {
+            ("melting_c", raw.melting_c, "room_c", raw.room_c)
+        } else {
+            ("room_c", raw.room_c, "melting_c", raw.melting_c)
+        };
+        let other_line = toml_key_line(text, other).map(|l| format!(" (line {l})")).unwrap_or_default();
         return Err(InputError::new(
             path,
-            toml_key_line(text, "room_c"),
-            "room_c",
-            raw.room_c,
+            toml_key_line(text, field),
+            field,
+            value,
             format!(
-                "{}: melting temperature {} degC must exceed room temperature {} degC",
+                "{}: melting temperature {} degC must exceed room temperature {} degC; {other} = {other_value}{other_line} is taken as right",
                 raw.name, raw.melting_c, raw.room_c
             ),
         ));
@@ -319,7 +390,10 @@ pub fn parse_material(path: &Path, text: &str) -> Result<MaterialFile, InputErro
     let yield_strength = raw
         .yield_strength
         .as_ref()
-        .map(|y| convert(path, text, "yield_strength", y, &[("MPa", 1e6), ("Pa", 1.0)]))
+        .map(|y| {
+            let law = RawLaw { unit: y.unit.clone(), coefficients: y.coefficients.clone(), source: y.source.clone() };
+            convert(path, text, "yield_strength", &law, &[("MPa", 1e6), ("Pa", 1.0)])
+        })
         .transpose()?;
     if let Some(e) = &raw.elastic {
         if !(e.youngs_gpa.is_finite() && e.youngs_gpa > 0.0 && e.youngs_gpa <= 2000.0) {
@@ -363,6 +437,9 @@ pub fn parse_material(path: &Path, text: &str) -> Result<MaterialFile, InputErro
         };
         InputError::new(path, toml_key_line(text, &field), &field, "", e.to_string())
     })?;
+    if let Some(y) = &raw.yield_strength {
+        check_yield_range(path, text, &material, y)?;
+    }
     if let Some(d) = &raw.dpzd {
         if !(d.r.is_finite() && d.r > 0.0 && d.r <= 20.0) {
             return Err(InputError::new(
@@ -504,6 +581,37 @@ mod tests {
         for f in ["c38.toml", "42crmo4.toml", "aa6082.toml", "h13a.toml", "aisi1045.toml"] {
             load_material(&fixture(f)).unwrap_or_else(|e| panic!("{e}"));
         }
+    }
+
+    #[test]
+    fn an_inconsistent_melting_room_pair_blames_the_implausible_one() {
+        let c38 = std::fs::read_to_string(fixture("c38.toml")).unwrap();
+        // Line 5 of c38.toml is melting_c, line 6 room_c.
+        let low_melting = c38.replace("melting_c = 1460.0", "melting_c = -5");
+        let e = parse_material(Path::new("m.toml"), &low_melting).unwrap_err();
+        assert_eq!((e.line, e.field.as_str(), e.value.as_str()), (Some(5), "melting_c", "-5"), "{e}");
+        assert!(e.reason.contains("room_c = 20 (line 6) is taken as right"), "{e}");
+        let hot_room = c38.replace("room_c = 20.0", "room_c = 1500");
+        let e = parse_material(Path::new("m.toml"), &hot_room).unwrap_err();
+        assert_eq!((e.line, e.field.as_str()), (Some(6), "room_c"), "{e}");
+    }
+
+    #[test]
+    fn the_yield_law_is_checked_over_its_stated_range() {
+        let c38 = std::fs::read_to_string(fixture("c38.toml")).unwrap();
+        let stated = "valid_to_c = 980.0 ";
+        assert!(c38.contains(stated));
+        // Without the stated range the thermal range [20, 1200] degC applies, where the Table 3
+        // cubic reaches zero at 980.2 degC (first non-positive 1 K sample: 981 degC).
+        let e = parse_material(Path::new("m.toml"), &c38.replace(stated, "# ")).unwrap_err();
+        assert_eq!(e.field, "yield_strength.coefficients");
+        assert_eq!(e.line, toml_key_line(&c38, "yield_strength.coefficients"));
+        assert!(e.reason.starts_with("sigma0(981 degC) = "), "{e}");
+        assert!(e.reason.contains("over [20, 1200] degC, the thermal range"), "{e}");
+        // A range reaching past melting is located at its key.
+        let e = parse_material(Path::new("m.toml"), &c38.replace(stated, "valid_to_c = 1500.0 ")).unwrap_err();
+        assert_eq!(e.field, "yield_strength.valid_to_c");
+        assert_eq!(e.line, toml_key_line(&c38, "yield_strength.valid_to_c"));
     }
 
     #[test]

@@ -52,6 +52,103 @@ pub fn load_tests(path: &Path) -> Result<Vec<CuttingTest>, InputError> {
     parse_tests(path, &text)
 }
 
+/// A measured quantity that a command needs a column for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeasuredColumn {
+    /// Cutting force Fc.
+    CuttingForce,
+    /// Feed (thrust) force Ft.
+    FeedForce,
+    /// Chip thickness tc.
+    ChipThickness,
+}
+
+impl MeasuredColumn {
+    /// The quantity in a message (`cutting-force column`).
+    fn what(self) -> &'static str {
+        match self {
+            MeasuredColumn::CuttingForce => "cutting-force",
+            MeasuredColumn::FeedForce => "feed-force",
+            MeasuredColumn::ChipThickness => "chip-thickness",
+        }
+    }
+
+    /// The column names that carry the quantity, with their units.
+    fn accepted(self) -> &'static str {
+        match self {
+            MeasuredColumn::CuttingForce => "`fc_n_per_mm` (N/mm, per unit width) or `fc_n` (N, total over the width)",
+            MeasuredColumn::FeedForce => "`ft_n_per_mm` (N/mm, per unit width) or `ft_n` (N, total over the width)",
+            MeasuredColumn::ChipThickness => "`chip_mm` (mm)",
+        }
+    }
+
+    fn columns(self) -> &'static [&'static str] {
+        match self {
+            MeasuredColumn::CuttingForce => &["fc_n_per_mm", "fc_n"],
+            MeasuredColumn::FeedForce => &["ft_n_per_mm", "ft_n"],
+            MeasuredColumn::ChipThickness => &["chip_mm"],
+        }
+    }
+}
+
+/// The header of a test CSV: its column names and the line they are on.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Columns {
+    /// Column names in file order.
+    pub names: Vec<String>,
+    /// 1-based line of the header row.
+    pub line: Option<usize>,
+}
+
+impl Columns {
+    /// Whether the file has a column carrying `m`.
+    #[must_use]
+    pub fn has(&self, m: MeasuredColumn) -> bool {
+        m.columns().iter().any(|c| self.names.iter().any(|n| n == c))
+    }
+
+    /// Checks that the file has a column for each quantity in `needs`; `purpose` says who needs
+    /// them (`DPZD identification (paper Eq 15) needs Fc, Ft and tc`).
+    ///
+    /// Returns an error at the header line naming each missing quantity, the accepted column
+    /// names and the columns found.
+    pub fn require(&self, path: &Path, needs: &[MeasuredColumn], purpose: &str) -> Result<(), InputError> {
+        let missing: Vec<String> = needs
+            .iter()
+            .filter(|m| !self.has(**m))
+            .map(|m| format!("no {} column (accepted names: {})", m.what(), m.accepted()))
+            .collect();
+        if missing.is_empty() {
+            return Ok(());
+        }
+        Err(InputError::new(
+            path,
+            self.line,
+            "(header)",
+            "",
+            format!(
+                "the file has {}; columns found: {}; {purpose}",
+                missing.join(" and "),
+                self.names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+            ),
+        ))
+    }
+}
+
+/// Reads a test CSV for a command that needs `needs` measured: as [`load_tests`], and a file with
+/// no column for one of them is an error naming the file, the accepted column names and the
+/// columns found (rather than a later "not measured" about one row).
+pub fn load_tests_measuring(
+    path: &Path,
+    needs: &[MeasuredColumn],
+    purpose: &str,
+) -> Result<Vec<CuttingTest>, InputError> {
+    let text = read_text(path)?;
+    let (tests, columns) = parse_tests_with_columns(path, &text)?;
+    columns.require(path, needs, purpose)?;
+    Ok(tests)
+}
+
 /// Parses test CSV text (`path` is only used in messages).
 ///
 /// Returns a located error (line, column name, value) for CSV structure (missing, unknown or
@@ -59,6 +156,11 @@ pub fn load_tests(path: &Path) -> Result<Vec<CuttingTest>, InputError> {
 /// duplicate test ids, a chip ratio with no shear angle, and forces with no positive shear-plane
 /// force (Eq 9) at the measured shear angle.
 pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputError> {
+    parse_tests_with_columns(path, text).map(|(tests, _)| tests)
+}
+
+/// [`parse_tests`], also returning the header.
+pub fn parse_tests_with_columns(path: &Path, text: &str) -> Result<(Vec<CuttingTest>, Columns), InputError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut rdr =
         csv::ReaderBuilder::new().comment(Some(b'#')).trim(csv::Trim::All).flexible(false).from_reader(text.as_bytes());
@@ -259,7 +361,8 @@ pub fn parse_tests(path: &Path, text: &str) -> Result<Vec<CuttingTest>, InputErr
         &mut tests,
         [!has(["fc_sd_n_per_mm", "fc_sd_n"]), !has(["ft_sd_n_per_mm", "ft_sd_n"]), !has(["chip_sd_mm", "chip_sd_mm"])],
     );
-    Ok(tests)
+    let columns = Columns { names: headers.iter().map(str::to_string).collect(), line: header_line };
+    Ok((tests, columns))
 }
 
 /// Sets the sample standard deviation (n - 1 denominator) of repeated tests at one condition on
@@ -381,6 +484,30 @@ mod tests {
         assert_eq!(e.field, "(header)");
         // A byte-order mark before the header is not part of the first column name.
         assert_eq!(parse("\u{feff}test,speed_m_min,uncut_mm,width_mm,rake_deg\n1,200,0.15,1,0\n").unwrap().len(), 1);
+    }
+
+    #[test]
+    fn a_missing_measurement_column_names_the_accepted_and_the_found_columns() {
+        let text =
+            "# c\ntest,speed_m_min,uncut_mm,width_mm,rake_deg,ft_n_per_mm,chip_mm\n3,240,0.075,1.95,0,186,0.157\n";
+        let (_, cols) = parse_tests_with_columns(Path::new("t.csv"), text).unwrap();
+        assert_eq!(cols.line, Some(2));
+        let all = [MeasuredColumn::CuttingForce, MeasuredColumn::FeedForce, MeasuredColumn::ChipThickness];
+        let e = cols.require(Path::new("t.csv"), &all, "X needs Fc").unwrap_err();
+        assert_eq!((e.line, e.field.as_str()), (Some(2), "(header)"));
+        assert!(e.reason.starts_with("the file has no cutting-force column (accepted names: `fc_n_per_mm`"), "{e}");
+        assert!(e.reason.contains("`fc_n` (N, total over the width)"), "{e}");
+        assert!(e.reason.contains("columns found: `test`, `speed_m_min`, `uncut_mm`, `width_mm`, `rake_deg`, `ft_n_per_mm`, `chip_mm`; X needs Fc"), "{e}");
+        assert!(!e.reason.contains("feed-force"), "{e}");
+        // Totals count as well as per-width forces; every missing quantity is named.
+        let (_, cols) = parse_tests_with_columns(
+            Path::new("t.csv"),
+            "test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n\n1,200,0.15,1.6,-7,610\n",
+        )
+        .unwrap();
+        let e = cols.require(Path::new("t.csv"), &all, "p").unwrap_err();
+        assert!(e.reason.contains("no feed-force column") && e.reason.contains(" and no chip-thickness column"), "{e}");
+        assert!(cols.require(Path::new("t.csv"), &[MeasuredColumn::CuttingForce], "p").is_ok());
     }
 
     #[test]
