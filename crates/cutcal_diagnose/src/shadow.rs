@@ -24,8 +24,9 @@ use rayon::prelude::*;
 
 use crate::error::DiagnoseError;
 use crate::hooks::{Hook, Hooks};
-use crate::simulator::{oxley_with_hooks, ParamSpec, Prediction, Simulator};
+use crate::simulator::{oxley_with_hooks_from, ParamSpec, Prediction, Simulator};
 use crate::spline::Table;
+use cutcal_model::oxley::OxleyPrediction;
 
 /// A knob of the shadow: a mechanism hook or a nuisance constant.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -114,6 +115,16 @@ struct Shadow<'a> {
 
 impl Shadow<'_> {
     fn eval(&self, t: &CuttingTest, knob: Option<(Knob, f64)>) -> Result<[f64; 5], DiagnoseError> {
+        self.eval_from(t, knob, None).map(|(y, _)| y)
+    }
+
+    /// [`Shadow::eval`] warm-started at a nearby solution; also returns the solution.
+    fn eval_from(
+        &self,
+        t: &CuttingTest,
+        knob: Option<(Knob, f64)>,
+        start: Option<&OxleyPrediction>,
+    ) -> Result<([f64; 5], OxleyPrediction), DiagnoseError> {
         let mut h = Hooks::NEUTRAL;
         let mut options = OxleyOptions::wide();
         let mut scaled: Material;
@@ -137,8 +148,11 @@ impl Shadow<'_> {
             Some((Knob::LnJcM, u)) => jc.m *= u.exp(),
             None => {}
         }
-        let p = oxley_with_hooks(material, &jc, t, &h, &options)?;
-        Ok([p.fc_n_per_m.ln(), p.ft_n_per_m.ln(), p.chip_m.ln(), p.t_ab_c.unwrap_or(0.0), p.t_int_c.unwrap_or(0.0)])
+        let (p, full) = oxley_with_hooks_from(material, &jc, t, &h, &options, start)?;
+        Ok((
+            [p.fc_n_per_m.ln(), p.ft_n_per_m.ln(), p.chip_m.ln(), p.t_ab_c.unwrap_or(0.0), p.t_int_c.unwrap_or(0.0)],
+            full,
+        ))
     }
 }
 
@@ -154,6 +168,8 @@ struct ShadowFit<'a> {
     nominal: JcParams,
     tests: &'a [CuttingTest],
     external: &'a [Prediction],
+    /// Warm starts per test: the solutions at the nominal set (fixed, so the fit is deterministic).
+    starts: Vec<OxleyPrediction>,
 }
 
 impl ShadowFit<'_> {
@@ -179,7 +195,12 @@ impl Problem for ShadowFit<'_> {
     fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
         let x: Vec<f64> = p.iter().copied().collect();
         let sh = Shadow { material: self.material, jc: self.jc(&x) };
-        let ys: Vec<Result<[f64; 5], DiagnoseError>> = self.tests.par_iter().map(|t| sh.eval(t, None)).collect();
+        let ys: Vec<Result<[f64; 5], DiagnoseError>> = self
+            .tests
+            .par_iter()
+            .zip(&self.starts)
+            .map(|(t, s)| sh.eval_from(t, None, Some(s)).map(|(y, _)| y))
+            .collect();
         for (i, (y, e)) in ys.into_iter().zip(self.external).enumerate() {
             let y = y.map_err(|e| match e {
                 DiagnoseError::Model { source, .. } => IdentError::Model(source),
@@ -219,7 +240,8 @@ impl ShadowSimulation {
         }
         // Solvable tests at the nominal set; the fit runs on those.
         let sh0 = Shadow { material, jc: nominal };
-        let first: Vec<Result<[f64; 5], DiagnoseError>> = tests.par_iter().map(|t| sh0.eval(t, None)).collect();
+        let first: Vec<Result<([f64; 5], OxleyPrediction), DiagnoseError>> =
+            tests.par_iter().map(|t| sh0.eval_from(t, None, None)).collect();
         let ok: Vec<usize> = (0..tests.len()).filter(|&i| first[i].is_ok()).collect();
         if 2 * ok.len() < tests.len() {
             let why = first.iter().find_map(|r| r.as_ref().err().map(ToString::to_string)).unwrap_or_default();
@@ -232,11 +254,15 @@ impl ShadowSimulation {
         let fit_tests: Vec<CuttingTest> = ok.iter().map(|&i| tests[i].clone()).collect();
         let fit_ext: Vec<Prediction> = ok.iter().map(|&i| external[i]).collect();
         // Start the level at the median force ratio.
-        let mut ratios: Vec<f64> =
-            ok.iter().filter_map(|&i| first[i].as_ref().ok().map(|y| external[i].fc_n_per_m.ln() - y[0])).collect();
+        let mut ratios: Vec<f64> = ok
+            .iter()
+            .filter_map(|&i| first[i].as_ref().ok().map(|(y, _)| external[i].fc_n_per_m.ln() - y[0]))
+            .collect();
         ratios.sort_by(f64::total_cmp);
         let level0 = ratios[ratios.len() / 2].clamp(-2.0, 2.0);
-        let problem = ShadowFit { material, nominal, tests: &fit_tests, external: &fit_ext };
+        let starts: Vec<OxleyPrediction> =
+            ok.iter().filter_map(|&i| first[i].as_ref().ok().map(|(_, sol)| sol.clone())).collect();
+        let problem = ShadowFit { material, nominal, tests: &fit_tests, external: &fit_ext, starts };
         let bounds = Bounds::new(
             vec!["ln_level".into(), "n".into(), "C".into(), "m".into()],
             vec![-2.5, 0.05, 1e-4, 0.3],
@@ -263,15 +289,29 @@ impl ShadowSimulation {
         let built: Vec<Result<Vec<Table>, DiagnoseError>> = tests
             .par_iter()
             .map(|t| {
-                let base = sh.eval(t, None)?;
+                let (base, base_sol) = sh.eval_from(t, None, None)?;
                 KNOBS
                     .iter()
                     .map(|&k| {
+                        // Walk outward from the off node, each node warm-started at its neighbour.
                         let (nodes, off) = grid(k);
-                        let values: Vec<Option<[f64; 5]>> = nodes
-                            .iter()
-                            .map(|&u| if (u - off).abs() < 1e-12 { Some(base) } else { sh.eval(t, Some((k, u))).ok() })
-                            .collect();
+                        let k0 = nodes.iter().position(|u| (u - off).abs() < 1e-12).unwrap_or(0);
+                        let mut values: Vec<Option<[f64; 5]>> = vec![None; nodes.len()];
+                        values[k0] = Some(base);
+                        for dir in [1i64, -1] {
+                            let mut prev = Some(base_sol.clone());
+                            let mut i = k0 as i64 + dir;
+                            while i >= 0 && (i as usize) < nodes.len() {
+                                match sh.eval_from(t, Some((k, nodes[i as usize])), prev.as_ref()) {
+                                    Ok((y, sol)) => {
+                                        values[i as usize] = Some(y);
+                                        prev = Some(sol);
+                                    }
+                                    Err(_) => break,
+                                }
+                                i += dir;
+                            }
+                        }
                         Table::new(&nodes, &values, off)
                     })
                     .collect()

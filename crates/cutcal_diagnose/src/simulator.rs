@@ -254,6 +254,21 @@ pub fn oxley_with_hooks(
     h: &Hooks,
     options: &OxleyOptions,
 ) -> Result<Prediction, DiagnoseError> {
+    oxley_with_hooks_from(material, jc, t, h, options, None).map(|(p, _)| p)
+}
+
+/// As [`oxley_with_hooks`], warm-started at a nearby solution (`oxley::predict_from`: the start
+/// changes the work done, not the solution); also returns the full solution for the next start.
+///
+/// Returns an error naming the test when a hook value is out of range or there is no solution.
+pub fn oxley_with_hooks_from(
+    material: &Material,
+    jc: &JcParams,
+    t: &CuttingTest,
+    h: &Hooks,
+    options: &OxleyOptions,
+    start: Option<&oxley::OxleyPrediction>,
+) -> Result<(Prediction, oxley::OxleyPrediction), DiagnoseError> {
     let err = |e| DiagnoseError::Model { test: t.id.clone(), source: e };
     let cond = CuttingConditions::new(
         t.speed_m_per_s,
@@ -280,15 +295,18 @@ pub fn oxley_with_hooks(
         },
         ..Physics::baseline()
     };
-    let p = oxley::predict(material, &jc, &cond, options, &physics).map_err(err)?;
-    Ok(Prediction {
-        fc_n_per_m: p.cutting_force_n_per_m,
-        ft_n_per_m: p.feed_force_n_per_m,
-        chip_m: p.chip_thickness_m,
-        t_ab_c: Some(p.temperature_ab_c),
-        t_int_c: Some(p.temperature_int_c),
-        beta: Some(p.heat_partition),
-    })
+    let p = oxley::predict_from(material, &jc, &cond, options, &physics, start).map_err(err)?;
+    Ok((
+        Prediction {
+            fc_n_per_m: p.cutting_force_n_per_m,
+            ft_n_per_m: p.feed_force_n_per_m,
+            chip_m: p.chip_thickness_m,
+            t_ab_c: Some(p.temperature_ab_c),
+            t_int_c: Some(p.temperature_int_c),
+            beta: Some(p.heat_partition),
+        },
+        p,
+    ))
 }
 
 #[cfg(test)]
