@@ -14,10 +14,18 @@ use crate::hooks::Hooks;
 use crate::mechanism::{self, Context, MechanismId};
 use crate::simulator::{Prediction, Simulator};
 
-/// The three outputs.
-pub const OUTPUTS: [&str; 3] = ["fc", "ft", "tc"];
+/// The outputs: Fc, Ft, chip thickness and, where measured, the interface temperature rise.
+pub const OUTPUTS: [&str; NOUT] = ["fc", "ft", "tc", "t_int"];
 
-/// One observation: test index, output index (0 Fc, 1 Ft, 2 tc) and the measured value (N/m or m).
+/// Number of outputs.
+pub const NOUT: usize = 4;
+
+/// Reference temperature of the interface-temperature output, degC: the output is the rise
+/// `T_int - 20` so that its residual, like the others, is a log-ratio.
+pub const T_REF_C: f64 = 20.0;
+
+/// One observation: test index, output index (0 Fc, 1 Ft, 2 tc, 3 interface temperature rise) and
+/// the measured value (N/m, m or K).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Obs {
     /// Index into the tests.
@@ -34,7 +42,9 @@ pub fn observations(tests: &[CuttingTest]) -> Vec<Obs> {
     let mut v = Vec::new();
     for (i, t) in tests.iter().enumerate() {
         let m = t.measured;
-        for (j, y) in [m.cutting_force_n_per_m, m.feed_force_n_per_m, m.chip_thickness_m].into_iter().enumerate() {
+        let rise = m.interface_temperature_c.map(|t| t - T_REF_C);
+        for (j, y) in [m.cutting_force_n_per_m, m.feed_force_n_per_m, m.chip_thickness_m, rise].into_iter().enumerate()
+        {
             if let Some(y) = y.filter(|y| *y > 0.0) {
                 v.push(Obs { test: i, output: j, value: y });
             }
@@ -49,7 +59,8 @@ pub fn output(p: &Prediction, j: usize) -> f64 {
     match j {
         0 => p.fc_n_per_m,
         1 => p.ft_n_per_m,
-        _ => p.chip_m,
+        2 => p.chip_m,
+        _ => p.t_int_c.map_or(f64::NAN, |t| (t - T_REF_C).max(1.0)),
     }
 }
 
@@ -102,7 +113,7 @@ pub fn predict(
 
 /// Noise-unit residuals `ln(y/yhat)/s_j` of `obs` against `preds`.
 #[must_use]
-pub fn residuals(obs: &[Obs], preds: &[Prediction], noise: &[f64; 3]) -> Vec<f64> {
+pub fn residuals(obs: &[Obs], preds: &[Prediction], noise: &[f64; NOUT]) -> Vec<f64> {
     obs.iter().map(|o| (o.value / output(&preds[o.test], o.output)).ln() / noise[o.output]).collect()
 }
 
@@ -133,7 +144,7 @@ struct FitProblem<'a> {
     tests: &'a [CuttingTest],
     obs: &'a [Obs],
     spec: &'a Spec,
-    noise: [f64; 3],
+    noise: [f64; NOUT],
 }
 
 impl Problem for FitProblem<'_> {
@@ -245,7 +256,7 @@ pub fn fit(
     tests: &[CuttingTest],
     obs: &[Obs],
     spec: &Spec,
-    noise: &[f64; 3],
+    noise: &[f64; NOUT],
     start: Option<&[f64]>,
     max_iterations: usize,
 ) -> Result<Fit, DiagnoseError> {
@@ -297,7 +308,7 @@ pub fn data_jacobian(
     tests: &[CuttingTest],
     obs: &[Obs],
     spec: &Spec,
-    noise: &[f64; 3],
+    noise: &[f64; NOUT],
     x: &[f64],
     cols: &[usize],
     steps: &[f64],

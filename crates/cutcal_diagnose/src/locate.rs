@@ -10,9 +10,14 @@ use crate::simulator::Prediction;
 use crate::stats;
 
 /// Locates the mismatch per output: bias and the strongest covariate trend of the relative residual.
-pub(crate) fn locate(tests: &[CuttingTest], obs: &[Obs], preds: &[Prediction], noise: &[f64; 3]) -> Vec<Mismatch> {
+pub(crate) fn locate(
+    tests: &[CuttingTest],
+    obs: &[Obs],
+    preds: &[Prediction],
+    noise: &[f64; crate::fit::NOUT],
+) -> Vec<Mismatch> {
     let mut out = Vec::new();
-    for j in 0..3 {
+    for j in 0..crate::fit::NOUT {
         let rows: Vec<&Obs> = obs.iter().filter(|o| o.output == j).collect();
         if rows.is_empty() {
             continue;

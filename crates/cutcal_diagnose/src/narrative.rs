@@ -17,7 +17,7 @@ pub(crate) fn result_of(
     _sim: &dyn Simulator,
     base_loco: Option<&Loco>,
     obs: &[Obs],
-    noise: &[f64; 3],
+    noise: &[f64; crate::fit::NOUT],
     _current: &Fit,
 ) -> MechanismResult {
     let inf = info(c.id);

@@ -1,4 +1,5 @@
-//! The noise model of a diagnosis: relative standard deviations of Fc, Ft and t2, taken from the
+//! The noise model of a diagnosis: relative standard deviations of Fc, Ft, t2 and the interface
+//! temperature rise, taken from the
 //! data when they say it (issue 13, item 2; issue 10, item 4), else the stated defaults.
 //!
 //! Order of preference per output: (1) the per-row uncertainty columns (`*_sd_*`, e.g. written by
@@ -9,32 +10,40 @@
 
 use cutcal_model::CuttingTest;
 
+use crate::fit::{NOUT, T_REF_C};
+
 /// Lowest relative noise accepted from the data.
 const FLOOR: f64 = 0.005;
 
 /// Relative noise per output and where each came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NoiseModel {
-    /// Relative sd of Fc, Ft, t2.
-    pub sd: [f64; 3],
+    /// Relative sd of Fc, Ft, t2, T_int rise.
+    pub sd: [f64; NOUT],
     /// Source of each, e.g. `repeated conditions (df = 4)`.
-    pub source: [String; 3],
+    pub source: [String; NOUT],
 }
 
 /// The noise of `tests` grouped by condition in `groups`, with `default` where the data are silent.
 #[must_use]
-pub fn from_data(tests: &[CuttingTest], groups: &[Vec<usize>], default: [f64; 3]) -> NoiseModel {
+pub fn from_data(tests: &[CuttingTest], groups: &[Vec<usize>], default: [f64; NOUT]) -> NoiseModel {
     let value = |t: &CuttingTest, j: usize| {
         let m = t.measured;
-        [m.cutting_force_n_per_m, m.feed_force_n_per_m, m.chip_thickness_m][j].filter(|v| *v > 0.0)
+        [
+            m.cutting_force_n_per_m,
+            m.feed_force_n_per_m,
+            m.chip_thickness_m,
+            m.interface_temperature_c.map(|t| t - T_REF_C),
+        ][j]
+            .filter(|v| *v > 0.0)
     };
     let sd_of = |t: &CuttingTest, j: usize| {
         let s = t.measured.sd;
-        [s.cutting_force_n_per_m, s.feed_force_n_per_m, s.chip_thickness_m][j].filter(|v| *v > 0.0)
+        [s.cutting_force_n_per_m, s.feed_force_n_per_m, s.chip_thickness_m, None][j].filter(|v| *v > 0.0)
     };
     let mut sd = default;
-    let mut source: [String; 3] = std::array::from_fn(|j| format!("assumed default {:.0} %", 100.0 * default[j]));
-    for j in 0..3 {
+    let mut source: [String; NOUT] = std::array::from_fn(|j| format!("assumed default {:.0} %", 100.0 * default[j]));
+    for j in 0..NOUT {
         let measured: Vec<&CuttingTest> = tests.iter().filter(|t| value(t, j).is_some()).collect();
         let mut rel: Vec<f64> =
             measured.iter().filter_map(|t| Some(sd_of(t, j)? / value(t, j)?)).filter(|r| r.is_finite()).collect();
@@ -84,7 +93,7 @@ mod tests {
             test("b1", 3.0, e(0.5 + 0.02)),
             test("b2", 3.0, e(0.5 - 0.02)),
         ];
-        let nm = from_data(&tests, &[vec![0, 1, 2], vec![3, 4]], [0.03, 0.05, 0.05]);
+        let nm = from_data(&tests, &[vec![0, 1, 2], vec![3, 4]], [0.03, 0.05, 0.05, 0.1]);
         assert!((nm.sd[0] - 0.023_094).abs() < 1e-5, "{:?}", nm);
         assert!(nm.source[0].contains("df = 3"));
         assert_eq!(nm.sd[1], 0.05);
@@ -98,7 +107,7 @@ mod tests {
             t.measured.sd = MeasuredSd { cutting_force_n_per_m: Some(s), ..MeasuredSd::default() };
         }
         // Relative 0.02 and 0.03: the median of two is the upper one.
-        let nm = from_data(&tests, &[vec![0], vec![1]], [0.03, 0.05, 0.05]);
+        let nm = from_data(&tests, &[vec![0], vec![1]], [0.03, 0.05, 0.05, 0.1]);
         assert!((nm.sd[0] - 0.03).abs() < 1e-12 && nm.source[0].contains("per-row"));
     }
 }

@@ -133,16 +133,19 @@ pub(crate) fn loco_of(per_fold: &[Vec<Fit>], which: usize) -> Loco {
 }
 
 /// Relative-error RMS (%) per output from noise-unit residuals and their outputs.
-pub(crate) fn rms_pct(resid: &[f64], outputs: &[usize], noise: &[f64; 3]) -> OutputRms {
-    let mut acc = [(0.0, 0usize); 3];
+pub(crate) fn rms_pct(resid: &[f64], outputs: &[usize], noise: &[f64; crate::fit::NOUT]) -> OutputRms {
+    let mut acc = [(0.0, 0usize); crate::fit::NOUT];
     let mut all = (0.0, 0usize);
     for (r, &j) in resid.iter().zip(outputs) {
         let rel = 100.0 * ((r * noise[j]).exp() - 1.0);
         acc[j].0 += rel * rel;
         acc[j].1 += 1;
-        all.0 += rel * rel;
-        all.1 += 1;
+        // `all` pools the forces and the chip (comparable with or without a temperature column).
+        if j < 3 {
+            all.0 += rel * rel;
+            all.1 += 1;
+        }
     }
     let f = |(s, c): (f64, usize)| (c > 0).then(|| (s / c as f64).sqrt());
-    OutputRms { fc: f(acc[0]), ft: f(acc[1]), tc: f(acc[2]), all: f(all).unwrap_or(0.0) }
+    OutputRms { fc: f(acc[0]), ft: f(acc[1]), tc: f(acc[2]), t_int: f(acc[3]), all: f(all).unwrap_or(0.0) }
 }

@@ -101,7 +101,10 @@ pub struct OutputRms {
     pub ft: Option<f64>,
     /// Chip thickness.
     pub tc: Option<f64>,
-    /// All outputs pooled.
+    /// Interface temperature rise, where measured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t_int: Option<f64>,
+    /// Fc, Ft and tc pooled.
     pub all: f64,
 }
 
@@ -210,7 +213,7 @@ pub struct Report {
     /// Number of measured numbers.
     pub observations: usize,
     /// Assumed relative noise per output, %.
-    pub noise_pct: [f64; 3],
+    pub noise_pct: [f64; crate::fit::NOUT],
     /// Global misfit of the baseline.
     pub global_misfit: GlobalMisfit,
     /// Decision thresholds.
@@ -250,10 +253,10 @@ impl Report {
         let _ = writeln!(s, "Verdict: {}", self.verdict.as_str());
         let _ = writeln!(
             s,
-            "Global misfit of the baseline: chi2 = {:.1} on {} dof (p = {:.2e}, noise Fc {:.1} %, Ft {:.1} %, tc {:.1} %)",
-            self.global_misfit.chi2, self.global_misfit.dof, self.global_misfit.p_value, self.noise_pct[0], self.noise_pct[1], self.noise_pct[2]
+            "Global misfit of the baseline: chi2 = {:.1} on {} dof (p = {:.2e}, noise Fc {:.1} %, Ft {:.1} %, tc {:.1} %, T_int rise {:.0} %)",
+            self.global_misfit.chi2, self.global_misfit.dof, self.global_misfit.p_value, self.noise_pct[0], self.noise_pct[1], self.noise_pct[2], self.noise_pct[3]
         );
-        for (o, src) in ["Fc", "Ft", "tc"].iter().zip(&self.noise_source) {
+        for (o, src) in ["Fc", "Ft", "tc", "T_int"].iter().zip(&self.noise_source) {
             let _ = writeln!(s, "  noise of {o}: {src}");
         }
         for n in &self.simulator_notes {

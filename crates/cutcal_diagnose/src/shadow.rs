@@ -114,11 +114,8 @@ struct Shadow<'a> {
 }
 
 impl Shadow<'_> {
-    fn eval(&self, t: &CuttingTest, knob: Option<(Knob, f64)>) -> Result<[f64; 5], DiagnoseError> {
-        self.eval_from(t, knob, None).map(|(y, _)| y)
-    }
-
-    /// [`Shadow::eval`] warm-started at a nearby solution; also returns the solution.
+    /// The shadow's `ln Fc, ln Ft, ln t2, T_AB, T_int` at test `t` with one knob set, warm-started
+    /// at a nearby solution; also returns the solution.
     fn eval_from(
         &self,
         t: &CuttingTest,
