@@ -27,6 +27,10 @@ fn main() -> ExitCode {
     let result = match flags.task {
         flags::Task::Pipeline(f) => pipeline::run(&f),
         flags::Task::Concealed(f) => concealed::run(&concealed::ConcealedOptions {
+            families: match f.family.as_str() {
+                "both" | "ab" => vec!["a".into(), "b".into()],
+                one => vec![one.to_string()],
+            },
             datasets: f.datasets,
             seed: f.seed,
             out: f.out,
