@@ -287,7 +287,7 @@ pub fn generate(family_b: bool, index: usize, hidden: &str, rank: usize, seed: u
                         Ok(y) => {
                             let e = enr(&y, &without, &noise, outs).0;
                             let miss = (e / t).ln().abs();
-                            if best.as_ref().map_or(true, |bb| miss < bb.1) {
+                            if best.as_ref().map(|bb| miss < bb.1).unwrap_or(true) {
                                 best = Some((x.exp(), miss, y));
                             }
                             if miss < 0.04 {

@@ -207,7 +207,7 @@ fn solve_c0(c: &Cond, k: &Consts, mods: &Mods, delta: f64) -> Option<State> {
     for i in 0..=8 {
         let c0 = 2.0 + i as f64;
         if let Some(s) = solve_phi(c, k, mods, c0, delta) {
-            if best.map_or(true, |b| s.normal_gap.abs() < b.normal_gap.abs()) {
+            if best.map(|b| s.normal_gap.abs() < b.normal_gap.abs()).unwrap_or(true) {
                 best = Some(s);
             }
         }

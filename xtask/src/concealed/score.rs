@@ -48,7 +48,7 @@ impl Outcome {
         self.ok() && !self.selected.is_empty()
     }
     fn named(&self) -> bool {
-        self.ok() && self.selected.iter().any(|s| *s == self.hidden)
+        self.ok() && self.selected.contains(&self.hidden)
     }
     fn heldout_change(&self) -> Option<f64> {
         match (self.loco_before, self.loco_after) {
@@ -158,8 +158,7 @@ pub fn summarise(family: &str, outcomes: &[Outcome]) -> (String, Headline) {
     for id in MECHANISMS {
         let rows: Vec<&&Outcome> = mech.iter().filter(|o| o.hidden == id).collect();
         let st: Vec<&&&Outcome> = rows.iter().filter(|o| o.enr.unwrap_or(0.0) >= 2.0).collect();
-        let in_set =
-            rows.iter().filter(|o| o.ok() && (o.named() || o.ambiguous_with.iter().any(|a| *a == o.hidden))).count();
+        let in_set = rows.iter().filter(|o| o.ok() && (o.named() || o.ambiguous_with.contains(&o.hidden))).count();
         let _ = writeln!(
             s,
             "| {id} | {} | {} | {} | {:.1} ({:.1}) |",
