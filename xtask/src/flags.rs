@@ -16,7 +16,7 @@ pub struct Xtask {
 pub enum Task {
     /// Run every project in fixtures/projects through the whole chain into target/pipeline/.
     Pipeline(PipelineFlags),
-    /// Blind benchmark of discrepancy discovery on concealed mechanisms (issue 6).
+    /// Independent concealed-physics benchmark of `cutcal diagnose` (issue 10, item 5).
     Concealed(ConcealedFlags),
     /// Write the SYNTHETIC signal set of the signals project (fixtures/signals/c38/).
     Signals(SignalsFlags),
@@ -33,16 +33,19 @@ pub struct SignalsFlags {
 /// Options of `cargo xtask concealed`.
 #[derive(Debug, clap::Args)]
 pub struct ConcealedFlags {
-    /// Number of datasets.
+    /// Generator family: `a` (the detector may be tuned on it), `b` (never tuned on) or `both`.
+    #[arg(long, default_value = "both")]
+    pub family: String,
+    /// Number of datasets per family.
     #[arg(long, default_value_t = 200)]
     pub datasets: usize,
     /// Seed of the generator.
     #[arg(long, default_value_t = 2024)]
     pub seed: u64,
-    /// Output directory (data/, truth.json, outcomes.json, summary.md).
+    /// Output directory (data/, truth-*.json, outcomes-*.json, scores.json, summary.md).
     #[arg(long, default_value = "target/concealed")]
     pub out: PathBuf,
-    /// Also write the summary table here (e.g. docs/concealed.md).
+    /// Also write the page here (e.g. docs/concealed.md).
     #[arg(long)]
     pub markdown: Option<PathBuf>,
     /// Worker threads.

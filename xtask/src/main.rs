@@ -29,6 +29,10 @@ fn main() -> ExitCode {
         flags::Task::Pipeline(f) => pipeline::run(&f),
         flags::Task::Signals(f) => signals::run(&f.out),
         flags::Task::Concealed(f) => concealed::run(&concealed::ConcealedOptions {
+            families: match f.family.as_str() {
+                "both" | "ab" => vec!["a".into(), "b".into()],
+                one => vec![one.to_string()],
+            },
             datasets: f.datasets,
             seed: f.seed,
             out: f.out,

@@ -1,0 +1,103 @@
+//! The markdown page (`docs/concealed.md`): what the benchmark is, the generator's models and
+//! mechanisms beside the detector's forms with their citations, and the scores of each family.
+
+use std::fmt::Write as _;
+
+use super::ConcealedOptions;
+
+const INTRO: &str = r#"# Concealed-physics benchmark (`cargo xtask concealed`)
+
+An independent benchmark of `cutcal diagnose` (issue 10, item 5). The generator in
+`xtask/src/concealed/` shares **no model code** with the detector (nothing from `cutcal_diagnose`,
+`cutcal_model::oxley` or `cutcal_model::dpzd`): its forward models and mechanisms are written from
+the literature in forms other than the detector's. Every dataset is diagnosed in Mode A exactly as a
+user would run `cutcal diagnose --recordings recordings.csv --simulation simulation.csv --json` (no
+material file); only `verdict`, `selected`, `ambiguous_with` and `fit.before/after.loco.all` are read.
+
+**Family `a` is the family the detector may be tuned on; family `b` is never tuned on, and only its
+figures may be quoted in the README.**
+
+## Generator forward models
+
+| family | model | sources |
+|---|---|---|
+| a | Oxley's machining theory with a JC flow stress: primary zone with strain-rate constant C0, secondary zone thickness ratio delta, T_AB = T_w + eta dT_SZ, T_int = T_w + dT_SZ + psi dT_M, Boothroyd partition; phi from tau_int = k_chip, C0 from sigma'_N = sigma_N, delta minimising Fc; own nested bisection / golden-section solver, every loop capped | Oxley 1989 (*Mechanics of Machining*); Lalwani, Mehta & Jain 2009 (J. Mater. Process. Technol. 209, 5305); Boothroyd 1963 |
+| b | Shear-plane model: Merchant's generalised closure 2 phi + lambda - a = 75 deg; primary zone of thickness 25 um (h / 0.1 mm)^0.5; Zorev stick-slip contact (mu 0.6, power-law normal stress, a = 3) on Poletika's contact length l_c = h zeta^1.5; Loewen-Shaw shear-plane and interface temperatures (Jaeger moving band source in the chip, disc source in the tool); JC flow stress | Merchant 1945 (J. Appl. Phys. 16); Zorev 1963; Poletika 1969 via Astakhov 1999; Loewen & Shaw 1954 (Trans. ASME 76, 217); Jaeger 1942; Carslaw & Jaeger 1959 |
+
+Check against a published value (unit test `oxley::tests::lalwani_2009_aisi1045_case_1`): AISI 1045,
+200 m/min, h 0.15 mm, rake -7 deg, w 1.6 mm; Lalwani 2009 predict Fc 576 N, Ft 364 N, t_c 0.43 mm,
+T_int 942 degC; family `a` gives 567 N, 342 N, 0.409 mm, 957 degC.
+
+Materials (JC set; thermal constants): AISI 1045 (Jaspers & Dautzenberg 2002; Lalwani 2009 rho,
+cp(T), K(T)), AISI 4340 (Johnson & Cook 1985, with their rho and cp; K from ASM Handbook Vol. 1),
+Ti6Al4V (Lee & Lin 1998; Boyer, Welsch & Collings 1994, linearised; 20-60 m/min and h <= 0.15 mm,
+where Oxley's closure keeps a physical shear angle for this alloy). A solution with a chip ratio
+above 8 is a generation failure, counted and reported, never data.
+
+## Mechanisms: generator form against the detector's
+
+| id | generator (this benchmark) | detector |
+|---|---|---|
+| edge_ploughing | Albrecht 1960 (ASME J. Eng. Ind. 82, 348): pressure (1 + pi/2) k and friction m_e k on the rounded edge from the stagnation point (50-70 deg) to the flank contact (5-15 deg), k = primary shear flow stress; the simulation is run sharp | Waldorf, DeVor & Kapoor 1998 slip-line, one edge-radius parameter |
+| flank_wear | uniform normal (0.6-1.2 k) and shear (mu 0.3-0.5) stress on the land (Teitenberg, Bayoumi & Yucesan 1992, Wear 154, 287); VB grows with cumulative cut length at a Taylor-type speed exponent 1/n_T - 1, n_T 0.3-0.5 (Taylor 1907) | Smithey, Kapoor & DeVor 2001 wear land, VB linear in test order (or measured VB) |
+| tool_chip_friction | Zorev 1963 stick-slip, normal stress (1 - x/l_c)^a, mu(V_c) = mu0 V_c^-q (sliding-speed friction, Rech, Claudin & D'Eramo 2009); family a: Oxley's tau_int = k_chip becomes k_chip (1 - s (1 - zeta_Zorev)), mu0 0.3-0.8; family b: its own mu lowered and made speed-dependent | interface factor m_f0 (V/V_ref)^-p_v on k_chip |
+| thermal_softening | JC thermal exponent m scaled by exp(+-s) | kappa_T > 1 on (T - T_w) in the JC thermal term |
+| heat_partition | family a: Loewen & Shaw 1954 shear-plane partition R1 blended into Boothroyd's, and the tool's Loewen-Shaw share 1 - R2 of the frictional heat (Oxley puts it all into the chip); family b: the reverse (Boothroyd's beta, all frictional heat to the chip) blended into its Loewen-Shaw partitions | scale on Boothroyd beta |
+| size_effect | Kienzle 1952 power law (h / 0.1 mm)^-m_s on every flow stress | Nix-Gao sqrt(1 + l/h) |
+| built_up_edge | rake shift gated by the interface temperature of the cut (logistic below a gate temperature; Trent & Wright 2000: BUE disappears as the interface heats) | rake shift gated by a logistic in speed |
+| force_crosstalk | full 2x2 channel matrix (both cross terms and both gains) | Ft += c Fc |
+
+Decoys (right answer: no mechanism): `decoy:gain` (one factor 1 +- 5-15 % on both forces),
+`decoy:outlier` (one row's forces off by +15-35 % or -9-21 %), `decoy:drift` (both forces drifting
+5-15 % over the run order).
+
+## Datasets
+
+Per family: nulls, each mechanism and each decoy in the proportion 56 : 14 : 8 (n = 200: 58 nulls,
+14-15 per mechanism, 8-9 per decoy). Each dataset: one material; 5-30 conditions from a factorial,
+random or one-factor-at-a-time design over a random sub-range of 30-400 m/min and 0.03-0.3 mm (BUE
+datasets <= 200 m/min), one or two rakes in -5..+10 deg, width 1-4 mm, repeats in a quarter of them,
+run order shuffled in half. Optional columns: `order` (60 %), `edge_radius_um` (45 %; the true
+radius, or empty), `t_int_c` (25 %), `flank_wear_mm` (20 %, empty; measured VB in some flank-wear
+datasets). `simulation.csv` is the generator at nominal constants with no mechanism (with the tool's
+edge radius when the sharp-tool assumption is not the hidden mechanism); the recordings carry, in
+EVERY dataset, the nuisance (eta, psi +-3 %; rho, cp, K, tool K +-5 %; A, B, n, C, m +-5 %; uniform or
+truncated normal), the hidden mechanism or decoy, and lognormal noise of 2-5 % per output.
+
+**ENR** (from the generator's truth): d = ln y(with mechanism) - ln y(without), both noise-free at the
+same perturbed constants, over every recorded output (Fc, Ft, t_c, and T_int when recorded);
+ENR = RMS over all observations of d / sigma_output. The "shape ENR" (in the truth and the per-mechanism
+table) removes each output's mean of d first: the part a flow-stress level or a gain cannot absorb.
+A mechanism's strength is set by bisection within its physical range to a target ENR: 6 of every 7
+datasets at 2.3-8, the rest at 0.5-1.8 (`at_bound` in the truth when the range ends first).
+
+Scoring: a false positive is a null with any mechanism in `selected` (denominator: every generated
+null; a diagnosis error is not a claim but is shown in its own column). Naming is correct when
+`selected` contains the hidden id. Decoys abstain when nothing is selected.
+"#;
+
+/// The whole page.
+pub fn render(opts: &ConcealedOptions, sections: &[(String, String)], seconds: f64) -> String {
+    let mut s = String::from(INTRO);
+    let _ = writeln!(
+        s,
+        "\n## Results\n\nSeed {}, {} datasets per family, {} threads, {:.0} s. Reproduce: `cargo xtask concealed --family {} --datasets {} --seed {} --markdown docs/concealed.md` (data, sealed truth, per-dataset reports and outcomes in `{}`).\n",
+        opts.seed,
+        opts.datasets,
+        opts.threads,
+        seconds,
+        if opts.families.len() == 2 { "both".to_string() } else { opts.families.join(",") },
+        opts.datasets,
+        opts.seed,
+        opts.out.display()
+    );
+    for (f, text) in sections {
+        let label = if f == "b" {
+            "never tuned on; the README may quote only this family"
+        } else {
+            "the detector may be tuned on this family"
+        };
+        let _ = writeln!(s, "### Family {f} ({label})\n\n{text}");
+    }
+    s
+}
