@@ -185,14 +185,14 @@ fn mode_a(
                 if sm.converged { "" } else { "; the shadow fit stopped at its iteration cap" }
             ));
             for (id, why) in &sm.unsolved {
-                cfg.simulator_notes.push(format!("test {id}: the shadow has no solution, its signatures are zero ({why})"));
+                cfg.simulator_notes
+                    .push(format!("test {id}: the shadow has no solution, its signatures are zero ({why})"));
             }
             Ok(diagnose(&sim, measured, &cfg)?)
         }
         Err(e) => {
-            cfg.simulator_notes.push(format!(
-                "the shadow model could not be built ({e}); only output-level mechanisms are testable"
-            ));
+            cfg.simulator_notes
+                .push(format!("the shadow model could not be built ({e}); only output-level mechanisms are testable"));
             let sim = FixedSimulation::new(entries, conditions >= 3)?;
             Ok(diagnose(&sim, measured, &cfg)?)
         }
