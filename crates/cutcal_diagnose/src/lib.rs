@@ -5,6 +5,7 @@
 //! false-positive rate (design note `discrepancy-discovery.md`, Sec 3).
 #![warn(missing_docs)]
 
+pub mod classes;
 pub mod error;
 pub mod fit;
 pub mod hooks;

@@ -184,7 +184,9 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             id,
             title: "size effect (strengthening at small uncut chip thickness)",
             source: "Nix & Gao 1998; Joshi & Melkote 2004; design note M10",
-            params: vec![p("l_um", "um", 0.0, 40.0, 0.0, 5.0)],
+            // Up to 300 um: with l >> h the factor tends to sqrt(l/h), so the same form also covers
+            // power-law (Kienzle-type) size effects of exponent up to 1/2 over a feed range.
+            params: vec![p("l_um", "um", 0.0, 300.0, 0.0, 5.0)],
             hook: Some(Hook::FlowMultiplier),
             signature: "Fc and Ft up by the same factor at small h, Ft/Fc and chip unchanged",
             covariates: "at least three feeds",

@@ -25,13 +25,7 @@ pub(crate) fn result_of(
     for (pi, (v, l, h)) in inf.params.iter().zip(&c.ci) {
         params.insert(
             pi.name.to_string(),
-            ParamValue {
-                value: *v,
-                unit: pi.unit.into(),
-                ci_low: *l,
-                ci_high: *h,
-                ci_note: if l.is_some() && h.is_some() { String::new() } else { c.ci_note.clone() },
-            },
+            ParamValue { value: *v, unit: pi.unit.into(), ci_low: *l, ci_high: *h, ci_note: c.ci_note.clone() },
         );
     }
     if c.id == MechanismId::BuiltUpEdge {
@@ -174,7 +168,8 @@ pub(crate) fn explain(
             let name = match m.output.as_str() {
                 "fc" => "cutting force",
                 "ft" => "feed force",
-                _ => "chip thickness",
+                "tc" => "chip thickness",
+                _ => "interface temperature rise",
             };
             let side = if m.bias_pct > 0.0 { "higher" } else { "lower" };
             let trend = if m.trend == "none" { String::new() } else { format!(", and the gap {}", m.trend) };

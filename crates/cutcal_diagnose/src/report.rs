@@ -284,7 +284,10 @@ impl Report {
                 .params
                 .iter()
                 .map(|(k, v)| match (v.ci_low, v.ci_high) {
-                    (Some(l), Some(h)) => format!("{k} = {:.4} {} [{l:.4}, {h:.4}]", v.value, v.unit),
+                    (Some(l), Some(h)) if v.ci_note.is_empty() => {
+                        format!("{k} = {:.4} {} [{l:.4}, {h:.4}]", v.value, v.unit)
+                    }
+                    (Some(l), Some(h)) => format!("{k} = {:.4} {} [{l:.4}, {h:.4}] ({})", v.value, v.unit, v.ci_note),
                     _ => format!("{k} = {:.4} {} (interval not available: {})", v.value, v.unit, v.ci_note),
                 })
                 .collect();

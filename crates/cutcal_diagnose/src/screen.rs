@@ -237,7 +237,16 @@ pub(crate) fn screen_and_refit(
                         far_bound = true;
                     }
                 }
-                ci_ok = any_excludes && !far_bound && df2 > 0;
+                // One parameter: the F-test of the refit is a likelihood-ratio test of the off value,
+                // i.e. the profile interval excludes the off value exactly when the test rejects;
+                // the Wald interval (unreliable near a bound or in a curved model) then only
+                // informs. Two parameters: one Wald interval must exclude its off value.
+                ci_ok = df2 > 0 && (d == 1 || any_excludes);
+                if far_bound {
+                    ci_note = "the estimate sits at its far bound: the effect may be larger than the mechanism's \
+                               modelled range"
+                        .into();
+                }
             }
         }
         if ci.is_empty() {

@@ -54,7 +54,9 @@ fn grid(k: Knob) -> (Vec<f64>, f64) {
         Knob::Hook(Hook::RakeShift) => {
             ([0.0, 2.0, 4.0, 6.0, 9.0, 12.0, 16.0, 20.0, 25.0].iter().map(|d: &f64| d.to_radians()).collect(), 0.0)
         }
-        Knob::Hook(Hook::FlowMultiplier) => (vec![-0.8, -0.6, -0.4, -0.2, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2], 0.0),
+        Knob::Hook(Hook::FlowMultiplier) => {
+            (vec![-0.8, -0.6, -0.4, -0.2, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0], 0.0)
+        }
         Knob::Hook(Hook::EdgeRadius) => {
             ([0.0, 5.0, 10.0, 15.0, 20.0, 30.0, 40.0, 60.0, 80.0].map(|u| u * 1e-6).to_vec(), 0.0)
         }
@@ -92,8 +94,11 @@ pub struct ShadowSummary {
     pub rms_pct: f64,
     /// Tests whose shadow had no solution (their signatures are zero), with the reason.
     pub unsolved: Vec<(String, String)>,
-    /// Shadow-fit iterations used, and whether it met a tolerance.
+    /// Whether the shadow fit met a tolerance.
     pub converged: bool,
+    /// Whether the fitted JC set was set aside for the nominal one at the start level (the fitted
+    /// set left more tests without a solution).
+    pub fit_discarded: bool,
 }
 
 /// Mode A simulator: the external numbers, moved by the shadow's per-test signatures.
@@ -146,10 +151,19 @@ impl Shadow<'_> {
             None => {}
         }
         let (p, full) = oxley_with_hooks_from(material, &jc, t, &h, &options, start)?;
-        Ok((
-            [p.fc_n_per_m.ln(), p.ft_n_per_m.ln(), p.chip_m.ln(), p.t_ab_c.unwrap_or(0.0), p.t_int_c.unwrap_or(0.0)],
-            full,
-        ))
+        let y =
+            [p.fc_n_per_m.ln(), p.ft_n_per_m.ln(), p.chip_m.ln(), p.t_ab_c.unwrap_or(0.0), p.t_int_c.unwrap_or(0.0)];
+        if y.iter().all(|v| v.is_finite()) {
+            Ok((y, full))
+        } else {
+            // A non-positive force (a feed force can change sign at large rake) has no log-signature.
+            Err(DiagnoseError::Inconsistent(format!(
+                "test {}: the shadow gives a non-positive force or chip (Fc {:.1}, Ft {:.1} N/mm)",
+                t.id,
+                p.fc_n_per_m / 1e3,
+                p.ft_n_per_m / 1e3
+            )))
+        }
     }
 }
 
@@ -217,6 +231,41 @@ impl Problem for ShadowFit<'_> {
     }
 }
 
+/// The shadow's tables at every test: per knob, walked outward from the off node, each node
+/// warm-started at its neighbour.
+fn tables_at(sh: &Shadow<'_>, tests: &[CuttingTest]) -> Vec<Result<Vec<Table>, DiagnoseError>> {
+    tests
+        .par_iter()
+        .map(|t| {
+            let (base, base_sol) = sh.eval_from(t, None, None)?;
+            KNOBS
+                .iter()
+                .map(|&k| {
+                    let (nodes, off) = grid(k);
+                    let k0 = nodes.iter().position(|u| (u - off).abs() < 1e-12).unwrap_or(0);
+                    let mut values: Vec<Option<[f64; 5]>> = vec![None; nodes.len()];
+                    values[k0] = Some(base);
+                    for dir in [1i64, -1] {
+                        let mut prev = Some(base_sol.clone());
+                        let mut i = k0 as i64 + dir;
+                        while i >= 0 && (i as usize) < nodes.len() {
+                            match sh.eval_from(t, Some((k, nodes[i as usize])), prev.as_ref()) {
+                                Ok((y, sol)) => {
+                                    values[i as usize] = Some(y);
+                                    prev = Some(sol);
+                                }
+                                Err(_) => break,
+                            }
+                            i += dir;
+                        }
+                    }
+                    Table::new(&nodes, &values, off)
+                })
+                .collect()
+        })
+        .collect()
+}
+
 impl ShadowSimulation {
     /// Fits the shadow to `external` (one prediction per test of `tests`, same order) on
     /// `material` from the JC set `nominal`, then tabulates every knob at every test.
@@ -281,39 +330,21 @@ impl ShadowSimulation {
             ),
             Err(_) => (start.iter().copied().collect(), false),
         };
-        let jc = problem.jc(&x);
-        let sh = Shadow { material, jc };
-        let built: Vec<Result<Vec<Table>, DiagnoseError>> = tests
-            .par_iter()
-            .map(|t| {
-                let (base, base_sol) = sh.eval_from(t, None, None)?;
-                KNOBS
-                    .iter()
-                    .map(|&k| {
-                        // Walk outward from the off node, each node warm-started at its neighbour.
-                        let (nodes, off) = grid(k);
-                        let k0 = nodes.iter().position(|u| (u - off).abs() < 1e-12).unwrap_or(0);
-                        let mut values: Vec<Option<[f64; 5]>> = vec![None; nodes.len()];
-                        values[k0] = Some(base);
-                        for dir in [1i64, -1] {
-                            let mut prev = Some(base_sol.clone());
-                            let mut i = k0 as i64 + dir;
-                            while i >= 0 && (i as usize) < nodes.len() {
-                                match sh.eval_from(t, Some((k, nodes[i as usize])), prev.as_ref()) {
-                                    Ok((y, sol)) => {
-                                        values[i as usize] = Some(y);
-                                        prev = Some(sol);
-                                    }
-                                    Err(_) => break,
-                                }
-                                i += dir;
-                            }
-                        }
-                        Table::new(&nodes, &values, off)
-                    })
-                    .collect()
-            })
-            .collect();
+        // The fitted set, unless it leaves more tests without a solution than the nominal set did
+        // (then the nominal set at the start level stands, and the report says so).
+        let mut jc = problem.jc(&x);
+        let mut built = tables_at(&Shadow { material, jc }, tests);
+        let failed = |b: &[Result<Vec<Table>, DiagnoseError>]| b.iter().filter(|r| r.is_err()).count();
+        let mut fit_discarded = false;
+        if failed(&built) > tests.len() - ok.len() {
+            let fallback = problem.jc(&[level0, nominal.n, nominal.c, nominal.m]);
+            let other = tables_at(&Shadow { material, jc: fallback }, tests);
+            if failed(&other) < failed(&built) {
+                built = other;
+                jc = fallback;
+                fit_discarded = true;
+            }
+        }
         let mut unsolved = Vec::new();
         let mut sq = (0.0, 0usize);
         let tables: Vec<Option<Vec<Table>>> = built
@@ -377,7 +408,7 @@ impl ShadowSimulation {
             external: external.to_vec(),
             tables,
             params,
-            summary: ShadowSummary { material: material.name.clone(), jc, rms_pct, unsolved, converged },
+            summary: ShadowSummary { material: material.name.clone(), jc, rms_pct, unsolved, converged, fit_discarded },
         })
     }
 
