@@ -379,14 +379,14 @@ impl ShadowSimulation {
             });
         }
         // Nuisance with stated uncertainty (issue 10, item 3): eta and psi +-3 % (one standard
-        // deviation), bounded at about +-3 sd.
+        // deviation), bounded at +-2 sd: a nuisance that needs more is not nuisance.
         for (name, start, sd) in [("eta", 0.9, 0.027), ("psi", 0.9, 0.027)] {
             params.push(ParamSpec {
                 name: name.into(),
                 unit: "-".into(),
                 start,
-                lower: start - 3.3 * sd,
-                upper: start + 3.3 * sd,
+                lower: start - 2.0 * sd,
+                upper: start + 2.0 * sd,
                 prior_sd: Some(sd),
             });
         }
@@ -398,8 +398,8 @@ impl ShadowSimulation {
                 name: name.into(),
                 unit: "-".into(),
                 start: 0.0,
-                lower: -0.15,
-                upper: 0.15,
+                lower: -0.10,
+                upper: 0.10,
                 prior_sd: Some(0.05),
             });
         }
