@@ -317,7 +317,8 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     } else if base_loco.is_none() && global.p_value < 0.01 {
         // Too few conditions to validate anything: list what could explain the misfit as a whole,
         // or the sign of a clearly missed output (its screening sensitivity points the same way
-        // and carries at least 30 % of the mechanism's largest effect).
+        // and carries at least 30 % of the mechanism's largest effect, and its refit explains at
+        // least 20 % of the misfit).
         for m in mismatch.iter().filter(|m| m.p_value < 0.01) {
             let j = OUTPUTS.iter().position(|o| *o == m.output).unwrap_or(0);
             for c in &first_round {
@@ -328,7 +329,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                     // residual by -s, so it explains the gap when s has the sign of the residual.
                     -c.sens[i] * base.resid[i] > 0.0 && c.sens[i].abs() >= 0.3 * smax
                 });
-                if agree && !idx.is_empty() && !ambiguous.contains(&c.id) {
+                if agree && c.explained >= 0.2 && !idx.is_empty() && !ambiguous.contains(&c.id) {
                     ambiguous.push(c.id);
                 }
             }
