@@ -63,3 +63,35 @@ fn bad_bootstrap_options_fail_and_write_nothing() {
     let e = stderr(&cutcal(&args));
     assert!(e.contains("bootstrap samples must be in 2..=1000000, got 1"), "{e}");
 }
+
+#[test]
+fn bootstrap_takes_the_rows_own_uncertainty_and_says_so() {
+    // Test 3 (paper Table 6: 224, 186 N/mm, 0.157 mm) with sd columns of 2 % (Fc: 4.48 N/mm),
+    // 4 % (Ft: 7.44 N/mm) and 3 % (chip: 0.00471 mm): the resampling uses 4 % on the forces (the
+    // larger channel) and 3 % on the chip, and the report names the row as the source. A flag wins.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let csv = dir.path().join("t.csv");
+    std::fs::write(
+        &csv,
+        "test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm,ft_n_per_mm,chip_mm,fc_sd_n_per_mm,ft_sd_n_per_mm,chip_sd_mm\n\
+         3,240,0.075,1.95,0,224,186,0.157,4.48,7.44,0.00471\n",
+    )
+    .expect("write csv");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["identify", "--material", "fixtures/materials/c38.toml", "--tests", csv.to_str().unwrap()];
+        args.extend(["--json", "--bootstrap", "8", "--bootstrap-starts", "2"]);
+        args.extend(extra);
+        let o = cutcal(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+        v["bootstrap"].clone()
+    };
+    let b = run(&[]);
+    assert!((b["uncertainty"]["force"].as_f64().unwrap() - 0.04).abs() < 1e-9, "{b}");
+    assert!((b["uncertainty"]["chip_thickness"].as_f64().unwrap() - 0.03).abs() < 1e-9, "{b}");
+    let src = b["source"].as_str().unwrap();
+    assert!(src.contains("row's sd columns (Fc 2.00 %, Ft 4.00 %"), "{src}");
+    let b = run(&["--force-uncertainty", "0.01"]);
+    assert!((b["uncertainty"]["force"].as_f64().unwrap() - 0.01).abs() < 1e-12, "{b}");
+    assert!(b["source"].as_str().unwrap().contains("forces: --force-uncertainty"), "{b}");
+}

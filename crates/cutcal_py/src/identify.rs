@@ -35,10 +35,10 @@ pub struct IdentifyRequest {
     pub max_iterations: usize,
     /// Bootstrap samples for the parameter spread (0: none).
     pub bootstrap: usize,
-    /// Relative standard uncertainty of the measured forces.
-    pub force_uncertainty: f64,
-    /// Relative standard uncertainty of the measured chip thickness.
-    pub chip_uncertainty: f64,
+    /// Relative standard uncertainty of the measured forces (`None`: the test's sd, else 3 %).
+    pub force_uncertainty: Option<f64>,
+    /// Relative standard uncertainty of the measured chip thickness (`None`: the test's sd, else 5 %).
+    pub chip_uncertainty: Option<f64>,
     /// Multistart starts per bootstrap sample.
     pub bootstrap_starts: usize,
     /// Points of the returned zone fields (the CLI's `--fields-csv` writes 201).
@@ -59,8 +59,8 @@ impl Default for IdentifyRequest {
             tolerance_c: 1e-6,
             max_iterations: 50,
             bootstrap: 0,
-            force_uncertainty: 0.03,
-            chip_uncertainty: 0.05,
+            force_uncertainty: None,
+            chip_uncertainty: None,
             bootstrap_starts: 4,
             field_points: 201,
         }

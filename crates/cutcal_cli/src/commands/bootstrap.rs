@@ -1,6 +1,12 @@
 //! `cutcal identify --bootstrap N`: uncertainty of the identified JC parameters from the stated
 //! uncertainty of the measured Fc, Ft and tc (library: [`cutcal_ident::bootstrap`]).
 //!
+//! The uncertainty of each quantity is, in this order: the command-line value; the test row's own
+//! uncertainty column (`fc_sd_n_per_mm`, `ft_sd_n_per_mm`, `chip_sd_mm`, e.g. written by
+//! `cutcal recordings`, or the spread of repeats), relative to the measured value, the larger of
+//! the two force channels since the resampling uses one force uncertainty; otherwise 3 % (forces)
+//! and 5 % (chip). The report says which source was used.
+//!
 //! Each sample perturbs the measurements, rebuilds the test (validated like the CSV reader does),
 //! re-solves the DPZD zone and re-runs the multistart identification with `--bootstrap-starts`
 //! starts (fewer than the nominal fit's: the nominal fit shows how many starts reach the best
@@ -25,12 +31,14 @@ pub struct BootstrapArgs {
     /// Resample the measured Fc, Ft and tc this many times and report the JC parameter spread (0: off).
     #[arg(long, default_value_t = 0)]
     pub bootstrap: usize,
-    /// Relative standard uncertainty of the measured forces (0.03 = 3 %).
-    #[arg(long, default_value_t = 0.03)]
-    pub force_uncertainty: f64,
-    /// Relative standard uncertainty of the measured chip thickness (0.05 = 5 %).
-    #[arg(long, default_value_t = 0.05)]
-    pub chip_uncertainty: f64,
+    /// Relative standard uncertainty of the measured forces (0.03 = 3 %); default: the row's
+    /// `fc_sd_n_per_mm` / `ft_sd_n_per_mm` when present, else 3 %.
+    #[arg(long)]
+    pub force_uncertainty: Option<f64>,
+    /// Relative standard uncertainty of the measured chip thickness (0.05 = 5 %); default: the
+    /// row's `chip_sd_mm` when present, else 5 %.
+    #[arg(long)]
+    pub chip_uncertainty: Option<f64>,
     /// Multistart starts per bootstrap sample.
     #[arg(long, default_value_t = 4)]
     pub bootstrap_starts: usize,
@@ -47,12 +55,12 @@ pub fn run_bootstrap(
     mf: &MaterialFile,
     test: &CuttingTest,
     settings: &DpzdSettings,
-) -> Result<Option<BootstrapReport>> {
+) -> Result<Option<BootstrapOutcome>> {
     if args.bootstrap == 0 {
         return Ok(None);
     }
-    let uncertainty = RelativeUncertainty::new(args.force_uncertainty, args.chip_uncertainty)
-        .context("--force-uncertainty / --chip-uncertainty")?;
+    let (force, chip, source) = uncertainty_of(args, test);
+    let uncertainty = RelativeUncertainty::new(force, chip).context("--force-uncertainty / --chip-uncertainty")?;
     if !(1..=1000).contains(&args.bootstrap_starts) {
         anyhow::bail!("--bootstrap-starts must be in 1..=1000, got {}", args.bootstrap_starts);
     }
@@ -98,7 +106,45 @@ pub fn run_bootstrap(
     let options = BootstrapOptions { samples: args.bootstrap, seed: settings.multistart.seed, uncertainty };
     let report = bootstrap(&nominal, &options, identify)
         .with_context(|| format!("bootstrap of test {} ({} samples)", test.id, args.bootstrap))?;
-    Ok(Some(report))
+    Ok(Some(BootstrapOutcome { report, source }))
+}
+
+/// A bootstrap report and where its uncertainties came from.
+#[derive(Debug, Clone, Serialize)]
+pub struct BootstrapOutcome {
+    /// The library's report.
+    #[serde(flatten)]
+    pub report: BootstrapReport,
+    /// Source of the force and chip uncertainties, e.g. `forces: the row's sd columns (...)`.
+    pub source: String,
+}
+
+/// The force and chip uncertainties: the flag, else the row's sd columns, else 3 % / 5 %.
+fn uncertainty_of(args: &BootstrapArgs, test: &CuttingTest) -> (f64, f64, String) {
+    let m = test.measured;
+    let rel = |sd: Option<f64>, v: Option<f64>| match (sd, v) {
+        (Some(s), Some(v)) if v > 0.0 && s.is_finite() => Some(s / v),
+        _ => None,
+    };
+    let fc = rel(m.sd.cutting_force_n_per_m, m.cutting_force_n_per_m);
+    let ft = rel(m.sd.feed_force_n_per_m, m.feed_force_n_per_m);
+    let (force, fsrc) = match (args.force_uncertainty, fc, ft) {
+        (Some(f), _, _) => (f, "forces: --force-uncertainty".to_string()),
+        (None, Some(a), Some(b)) => (
+            a.max(b),
+            format!("forces: the row's sd columns (Fc {:.2} %, Ft {:.2} %; the larger)", 100.0 * a, 100.0 * b),
+        ),
+        (None, Some(a), None) | (None, None, Some(a)) => {
+            (a, format!("forces: the row's sd column ({:.2} %)", 100.0 * a))
+        }
+        (None, None, None) => (0.03, "forces: default 3 % (the row states no sd)".to_string()),
+    };
+    let (chip, csrc) = match (args.chip_uncertainty, rel(m.sd.chip_thickness_m, m.chip_thickness_m)) {
+        (Some(c), _) => (c, "chip: --chip-uncertainty".to_string()),
+        (None, Some(c)) => (c, format!("chip: the row's sd column ({:.2} %)", 100.0 * c)),
+        (None, None) => (0.05, "chip: default 5 % (the row states no sd)".to_string()),
+    };
+    (force, chip, format!("{fsrc}; {csrc}"))
 }
 
 /// The identification report with a `bootstrap` key appended (field order kept).
@@ -106,12 +152,12 @@ pub fn run_bootstrap(
 struct WithBootstrap<'a> {
     #[serde(flatten)]
     report: &'a DpzdIdentifyReport,
-    bootstrap: &'a BootstrapReport,
+    bootstrap: &'a BootstrapOutcome,
 }
 
 /// Pretty JSON of the report, with a `bootstrap` key when there is one (byte-identical to the
 /// report alone otherwise).
-pub fn report_json(report: &DpzdIdentifyReport, boot: Option<&BootstrapReport>) -> Result<String> {
+pub fn report_json(report: &DpzdIdentifyReport, boot: Option<&BootstrapOutcome>) -> Result<String> {
     Ok(match boot {
         None => serde_json::to_string_pretty(report)?,
         Some(b) => serde_json::to_string_pretty(&WithBootstrap { report, bootstrap: b })?,
@@ -120,17 +166,19 @@ pub fn report_json(report: &DpzdIdentifyReport, boot: Option<&BootstrapReport>) 
 
 /// Human-readable table of a bootstrap report.
 #[must_use]
-pub fn render_bootstrap(b: &BootstrapReport) -> String {
+pub fn render_bootstrap(b: &BootstrapOutcome) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "  bootstrap: {} samples ({} failed), Fc/Ft +-{:.1} %, tc +-{:.1} % (1 sigma), seed {}",
-        b.samples,
-        b.failed,
-        100.0 * b.uncertainty.force,
-        100.0 * b.uncertainty.chip_thickness,
-        b.seed
+        "  bootstrap: {} samples ({} failed), Fc/Ft +-{:.1} %, tc +-{:.1} % (1 sigma; {}), seed {}",
+        b.report.samples,
+        b.report.failed,
+        100.0 * b.report.uncertainty.force,
+        100.0 * b.report.uncertainty.chip_thickness,
+        b.source,
+        b.report.seed
     );
+    let b = &b.report;
     let _ = writeln!(s, "  parameter        mean         std        2.5 %       97.5 %");
     for p in &b.parameters {
         let _ = writeln!(s, "  {:<8} {:>11.5} {:>11.5} {:>12.5} {:>12.5}", p.name, p.mean, p.std, p.q025, p.q975);

@@ -28,8 +28,8 @@ fn read_tests(path: PathBuf) -> PyResult<Vec<PyCuttingTest>> {
 /// the DPZD zone model (paper Sec 3; enhanced fixed point Sec 3.5) by the Eq 15 fit.
 #[pyfunction]
 #[pyo3(signature = (material, test, model = "enhanced", starts = 32, seed = 1, preset = "converged", h_mm = None, points = None, r = None,
-    rho_cp_original = None, tolerance_c = 1e-6, max_iterations = 50, bootstrap = 0, force_uncertainty = 0.03,
-    chip_uncertainty = 0.05, bootstrap_starts = 4, field_points = 201))]
+    rho_cp_original = None, tolerance_c = 1e-6, max_iterations = 50, bootstrap = 0, force_uncertainty = None,
+    chip_uncertainty = None, bootstrap_starts = 4, field_points = 201))]
 #[allow(clippy::too_many_arguments)] // the CLI's options, one keyword each
 fn identify(
     py: Python<'_>,
@@ -46,8 +46,8 @@ fn identify(
     tolerance_c: f64,
     max_iterations: usize,
     bootstrap: usize,
-    force_uncertainty: f64,
-    chip_uncertainty: f64,
+    force_uncertainty: Option<f64>,
+    chip_uncertainty: Option<f64>,
     bootstrap_starts: usize,
     field_points: usize,
 ) -> PyResult<PyIdentifyResult> {
