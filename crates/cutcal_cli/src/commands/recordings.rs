@@ -189,6 +189,10 @@ fn rewrite_tests_csv(path: &Path, shown: &str, summaries: &[TestSummary]) -> Res
         ["fc_n_per_mm", "ft_n_per_mm", "fc_sd_n_per_mm", "ft_sd_n_per_mm", "wear_flag", "bue_flag"]
     };
     let rows: Vec<csv::StringRecord> = rdr.records().collect::<Result<_, _>>()?;
+    let chip_sd = chip_sd_from_repeats(&headers, &rows);
+    if chip_sd.iter().any(Option::is_some) && !headers.iter().any(|h| h == "chip_sd_mm") {
+        headers.push("chip_sd_mm".to_string());
+    }
     let old_len = headers.len();
     for n in names {
         if !headers.iter().any(|h| h == n) {
@@ -199,9 +203,12 @@ fn rewrite_tests_csv(path: &Path, shown: &str, summaries: &[TestSummary]) -> Res
     let test_col = idx("test");
     let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
     w.write_record(&headers)?;
-    for r in rows {
+    for (row, r) in rows.into_iter().enumerate() {
         let mut cells: Vec<String> = r.iter().map(String::from).collect();
         cells.resize(headers.len().max(old_len), String::new());
+        if let Some(sd) = chip_sd[row] {
+            cells[idx("chip_sd_mm")] = format!("{sd:.5}");
+        }
         let id = cells[test_col].clone();
         if let Some(an) =
             summaries.iter().find(|s| s.test == id).and_then(|s| s.analysis.as_ref().map(|a| (a, s.width_mm)))
@@ -225,6 +232,32 @@ fn rewrite_tests_csv(path: &Path, shown: &str, summaries: &[TestSummary]) -> Res
     }
     let body = String::from_utf8(w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?)?;
     Ok(format!("# written by cutcal recordings from {shown} (forces: steady-window means; *_sd_*: sample sd over the window)\n{body}"))
+}
+
+/// Sample sd of `chip_mm` over rows repeated at one condition (same speed, uncut chip thickness,
+/// width and rake cells), per row; `None` for rows without a chip value, without a repeat, or
+/// whose repeats are identical.
+fn chip_sd_from_repeats(headers: &[String], rows: &[csv::StringRecord]) -> Vec<Option<f64>> {
+    let col = |n: &str| headers.iter().position(|h| h == n);
+    let (Some(chip), keys) = (col("chip_mm"), ["speed_m_min", "uncut_mm", "width_mm", "rake_deg"].map(col)) else {
+        return vec![None; rows.len()];
+    };
+    let num = |r: &csv::StringRecord, c: Option<usize>| c.and_then(|c| r.get(c)).and_then(|v| v.parse::<f64>().ok());
+    let key = |r: &csv::StringRecord| keys.map(|c| num(r, c).map(f64::to_bits));
+    let mut out = vec![None; rows.len()];
+    for (i, r) in rows.iter().enumerate() {
+        if num(r, Some(chip)).is_none() {
+            continue;
+        }
+        let vals: Vec<f64> = rows.iter().filter(|o| key(o) == key(r)).filter_map(|o| num(o, Some(chip))).collect();
+        if vals.len() >= 2 {
+            let mean = vals.iter().sum::<f64>() / vals.len() as f64;
+            let var = vals.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / (vals.len() - 1) as f64;
+            // Identical repeats say nothing about the spread (a zero sd is not a measurement).
+            out[i] = Some(var.sqrt()).filter(|v| *v > 0.0);
+        }
+    }
+    out
 }
 
 /// The SVG of one test: Fc, Ft envelopes, the window and the Fc mean +- sd band.
@@ -284,4 +317,32 @@ fn print_table(summaries: &[TestSummary], out: &Path) {
         }
     }
     println!("wrote {} and {}", out.display(), out.with_extension("json").display());
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chip_sd_comes_from_repeats_at_one_condition_only() {
+        // Three repeats of 0.30, 0.32, 0.34 mm: mean 0.32, sample sd sqrt((0.02^2 * 2) / 2) = 0.02.
+        let headers: Vec<String> =
+            ["test", "speed_m_min", "uncut_mm", "width_mm", "rake_deg", "chip_mm"].map(String::from).to_vec();
+        let rows: Vec<csv::StringRecord> = [
+            ["a", "240", "0.075", "1.95", "0", "0.30"],
+            ["b", "240", "0.075", "1.95", "0", "0.32"],
+            ["c", "240", "0.075", "1.95", "0", "0.34"],
+            ["d", "180", "0.075", "1.95", "0", "0.40"],
+            ["e", "240", "0.075", "1.95", "0", ""],
+        ]
+        .iter()
+        .map(|r| csv::StringRecord::from(r.to_vec()))
+        .collect();
+        let sd = chip_sd_from_repeats(&headers, &rows);
+        for s in &sd[..3] {
+            assert!((s.unwrap() - 0.02).abs() < 1e-12, "{sd:?}");
+        }
+        assert_eq!(sd[3], None);
+        assert_eq!(sd[4], None);
+    }
 }
