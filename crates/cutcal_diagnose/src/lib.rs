@@ -21,6 +21,7 @@ mod locate;
 pub mod mechanism;
 mod narrative;
 mod problem;
+pub use problem::condition_groups;
 pub mod report;
 mod screen;
 pub mod simulator;

@@ -51,7 +51,8 @@ fn replicate_min_p(pr: &Problem<'_>, base: &Fit, base_spec: &Spec, usable: &[Mec
         match o.output {
             0 => m.cutting_force_n_per_m = Some(y),
             1 => m.feed_force_n_per_m = Some(y),
-            _ => m.chip_thickness_m = Some(y),
+            2 => m.chip_thickness_m = Some(y),
+            _ => m.interface_temperature_c = Some(y + fit::T_REF_C),
         }
     }
     let obs = observations(&tests);

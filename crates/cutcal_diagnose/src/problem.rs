@@ -43,7 +43,7 @@ pub(crate) struct Loco {
 }
 
 /// Groups tests into conditions (same h, V and rake).
-pub(crate) fn condition_groups(tests: &[CuttingTest]) -> Vec<Vec<usize>> {
+pub fn condition_groups(tests: &[CuttingTest]) -> Vec<Vec<usize>> {
     let key = |t: &CuttingTest| {
         (
             (t.uncut_chip_thickness_m * 1e9).round() as i64,

@@ -18,7 +18,7 @@
 use cutcal_ident::lm::{minimise, Bounds, LmOptions, Problem};
 use cutcal_ident::IdentError;
 use cutcal_model::oxley::OxleyOptions;
-use cutcal_model::{CuttingTest, JcParams, Material, TempPolynomial};
+use cutcal_model::{CuttingTest, JcParams, Material};
 use nalgebra::DVector;
 use rayon::prelude::*;
 
@@ -139,12 +139,12 @@ impl Shadow<'_> {
             Some((Knob::Psi, u)) => options.psi = u,
             Some((Knob::LnRhoCp, u)) => {
                 scaled = self.material.clone();
-                scaled.thermal.rho_cp = scale_poly(&scaled.thermal.rho_cp, u.exp(), t)?;
+                scaled.thermal.rho_cp = scaled.thermal.rho_cp.scaled(u.exp());
                 material = &scaled;
             }
             Some((Knob::LnK, u)) => {
                 scaled = self.material.clone();
-                scaled.thermal.conductivity = scale_poly(&scaled.thermal.conductivity, u.exp(), t)?;
+                scaled.thermal.conductivity = scaled.thermal.conductivity.scaled(u.exp());
                 material = &scaled;
             }
             Some((Knob::LnJcM, u)) => jc.m *= u.exp(),
@@ -165,12 +165,6 @@ impl Shadow<'_> {
             )))
         }
     }
-}
-
-/// `p` times `f` (a thermal constant's polynomial scaled).
-fn scale_poly(p: &TempPolynomial, f: f64, t: &CuttingTest) -> Result<TempPolynomial, DiagnoseError> {
-    TempPolynomial::new(p.coefficients().iter().map(|c| c * f).collect())
-        .map_err(|e| DiagnoseError::Model { test: t.id.clone(), source: e })
 }
 
 /// Least squares of the shadow's globals `[ln level, n, C, m]` against the external numbers.

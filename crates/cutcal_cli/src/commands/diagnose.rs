@@ -144,21 +144,7 @@ fn mode_a(
         .map(|t| entries.iter().find(|(id, _)| *id == t.id).map(|(_, p)| *p))
         .collect::<Option<Vec<_>>>()
         .context("a measured test has no simulation row")?;
-    let conditions = {
-        let mut keys: Vec<(i64, i64, i64)> = measured
-            .iter()
-            .map(|t| {
-                (
-                    (t.uncut_chip_thickness_m * 1e9).round() as i64,
-                    (t.speed_m_per_s * 1e6).round() as i64,
-                    (t.rake_rad * 1e6).round() as i64,
-                )
-            })
-            .collect();
-        keys.sort_unstable();
-        keys.dedup();
-        keys.len()
-    };
+    let conditions = cutcal_diagnose::condition_groups(measured).len();
     let mut cfg = Config::standard("A");
     // The shadow's material: the one given, else the generic class that matches the external
     // simulation best (cutcal_diagnose::classes).
