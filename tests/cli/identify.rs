@@ -126,3 +126,41 @@ fn room_temperature_at_melting_is_rejected_with_its_line() {
         "{e}"
     );
 }
+
+/// `identify --method oxley` on the four Ivester et al. 2000 AISI 1045 tests (one speed): the
+/// joint fit reports its bounds, rank and condition number and refuses the five-parameter set.
+#[test]
+fn joint_oxley_fit_refuses_a_set_the_data_do_not_determine() {
+    let base = [
+        "identify",
+        "--method",
+        "oxley",
+        "--material",
+        "fixtures/materials/aisi1045.toml",
+        "--tests",
+        "fixtures/tests/aisi1045.csv",
+        "--starts",
+        "2",
+    ];
+    let v = json(&[&base[..], &["--json"]].concat());
+    assert_eq!(v["verdict"]["status"], "undetermined", "{}", v["verdict"]);
+    let rank = v["identifiability"]["effective_rank"].as_u64().unwrap();
+    assert!(rank < 5, "rank {rank}");
+    assert!(v["identifiability"]["condition_number"].as_f64().unwrap() > 1.0);
+    // AISI 1045 (7862 kg/m^3) is a steel: n, C and m stay in the steel literature box.
+    assert_eq!(v["literature"]["class"], "steel");
+    assert!(v["bounds_used"]["m"][1].as_f64().unwrap() <= 1.1 * 1.2 + 1e-12);
+    // n, C and m fixed at Jaspers & Dautzenberg 2002: A and B are determined, but no (A, B) fits
+    // the eight forces within 3-5 %: the verdict names the misfit instead of exporting.
+    let fixed = json(&[&base[..], &["--fix", "n=0.234", "--fix", "c=0.0134", "--fix", "m=1", "--json"]].concat());
+    assert_eq!(fixed["identifiability"]["effective_rank"], 2);
+    assert_eq!(fixed["verdict"]["status"], "misfit", "{}", fixed["verdict"]);
+    let table = cutcal(&base);
+    let text = String::from_utf8_lossy(&table.stdout);
+    assert!(text.contains("REFUSED, not determined") && text.contains("condition number"), "{text}");
+    // A bad --fix names the argument and the accepted names.
+    let bad = cutcal(&[&base[..], &["--fix", "q=1"]].concat());
+    assert!(!bad.status.success());
+    let e = stderr(&bad);
+    assert!(e.contains("--fix q=1") && e.contains("a_mpa, b_mpa, n, c, m"), "{e}");
+}

@@ -13,7 +13,8 @@ pub mod noise;
 pub mod null;
 pub mod shadow;
 pub mod spline;
-pub mod stats;
+/// The statistics kernel lives in `cutcal_ident` (the joint fit uses it too).
+pub use cutcal_ident::stats;
 
 pub use error::DiagnoseError;
 pub mod diagnose;

@@ -40,8 +40,16 @@ fn bench(c: &mut Criterion) {
     for starts in [1usize, 4] {
         g.bench_function(format!("{starts}_starts"), |b| {
             b.iter(|| {
-                identify_oxley(black_box(&m), &tests, &bounds, constants, &opts, &MultistartOptions::new(starts, 3))
-                    .unwrap()
+                identify_oxley(
+                    black_box(&m),
+                    &tests,
+                    &bounds,
+                    None,
+                    constants,
+                    &opts,
+                    &MultistartOptions::new(starts, 3),
+                )
+                .unwrap()
             })
         });
     }

@@ -6,6 +6,8 @@
 //! - [`dpzd_fit`]: the paper's Eq 15 identification from one DPZD zone solution;
 //! - [`quadrature`]: the Eq 15 objective as a zone integral (adaptive Gauss-Kronrod) and the
 //!   `converged` identification;
+//! - [`joint`]: JC fitted jointly to several tests through the extended Oxley model, with
+//!   [`literature`] boxes for n, C and m and an [`identifiability`] verdict;
 //! - [`bootstrap`]: parameter uncertainty by resampling the measurements (parallel, deterministic).
 //!
 //! Data flow: `cutcal_model::dpzd::ZoneSolution` -> [`dpzd_fit::identify_from_zone`] ->
@@ -15,10 +17,13 @@
 pub mod bootstrap;
 pub mod dpzd_fit;
 pub mod error;
+pub mod identifiability;
 pub mod joint;
+pub mod literature;
 pub mod lm;
 pub mod multistart;
 pub mod quadrature;
+pub mod stats;
 
 pub use dpzd_fit::{identify_from_zone, identify_from_zone_with, JcBounds, JcConstants, JcIdentification};
 pub use error::IdentError;

@@ -80,6 +80,16 @@ pub struct IdentifyArgs {
     /// Skip the chip thickness in the joint Oxley fit even where measured.
     #[arg(long)]
     pub no_chip: bool,
+    /// Joint Oxley fit: ignore the tests' edge radius and flank wear (sharp, unworn tool).
+    #[arg(long)]
+    pub sharp: bool,
+    /// Joint Oxley fit: material class of the literature box for n, C and m (steel, titanium,
+    /// aluminium, none); default from the density.
+    #[arg(long)]
+    pub class: Option<String>,
+    /// Joint Oxley fit: fix a parameter, NAME=VALUE (a_mpa, b_mpa, n, c, m; repeatable).
+    #[arg(long = "fix", value_name = "NAME=VALUE")]
+    pub fix: Vec<String>,
     /// DPZD model variant.
     #[arg(long, value_enum, default_value_t = ModelChoice::Enhanced)]
     pub model: ModelChoice,
@@ -467,7 +477,9 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
             json: args.json,
             work_temperature_c: None,
             no_chip: args.no_chip,
-            sharp: false,
+            sharp: args.sharp,
+            class: args.class.clone(),
+            fix: args.fix.clone(),
         });
     }
     let mf = load_material(&args.material)?;

@@ -4,14 +4,18 @@
 //! Measurement columns of the tests CSV: `fc_n`, `ft_n` are totals in N over `width_mm`, or
 //! `fc_n_per_mm`, `ft_n_per_mm` per unit width; `chip_mm` is the chip thickness (used unless
 //! `--no-chip`); `t_int_c` is reported, not fitted. Residuals are relative errors, so each measured
-//! quantity weighs the same whatever its size. Bounds come from the material's `[bounds]`;
-//! eps0 = 1/s, Tm and Tr are the material's melting and room temperatures.
+//! quantity weighs the same whatever its size. Bounds come from the material's `[bounds]`, with
+//! n, C and m kept inside the literature box of the material class (`cutcal_ident::literature`;
+//! class from the density unless `--class` is given); eps0 = 1/s, Tm and Tr are the material's
+//! melting and room temperatures. The verdict says whether the data determine the set
+//! (`cutcal_ident::identifiability`).
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use cutcal_ident::joint::{identify_oxley, JointOptions, OxleyIdentification, Quantity};
+use cutcal_ident::joint::{identify_oxley, JointOptions, JointVerdict, OxleyIdentification, Quantity};
+use cutcal_ident::literature::MaterialClass;
 use cutcal_ident::{JcConstants, MultistartOptions};
 use cutcal_model::oxley::Physics;
 
@@ -47,6 +51,40 @@ pub struct IdentifyOxleyArgs {
     /// Ignore the tests' edge radius and flank wear in the forward model (sharp, unworn tool).
     #[arg(long)]
     pub sharp: bool,
+    /// Material class for the literature box of n, C and m: steel, titanium, aluminium, or none
+    /// (the material's own bounds only). Default: from the room-temperature density.
+    #[arg(long)]
+    pub class: Option<String>,
+    /// Fix a parameter at a value, NAME=VALUE with NAME one of a_mpa, b_mpa, n, c, m (repeatable),
+    /// for example the n, C and m of a published set when the data cannot determine all five.
+    #[arg(long = "fix", value_name = "NAME=VALUE")]
+    pub fix: Vec<String>,
+}
+
+/// Applies `--fix NAME=VALUE` arguments to `bounds`.
+pub fn apply_fixes(bounds: &mut cutcal_ident::JcBounds, fixes: &[(String, f64)]) -> Result<()> {
+    for (name, value) in fixes {
+        cutcal_ident::joint::fix_parameter(bounds, name, *value).with_context(|| format!("--fix {name}={value}"))?;
+    }
+    Ok(())
+}
+
+fn parse_fix(s: &str) -> Result<(String, f64)> {
+    let (name, value) = s.split_once('=').ok_or_else(|| anyhow::anyhow!("--fix {s:?}: expected NAME=VALUE"))?;
+    let v: f64 = value.trim().parse().map_err(|_| anyhow::anyhow!("--fix {s:?}: {value:?} is not a number"))?;
+    Ok((name.trim().to_string(), v))
+}
+
+/// The material class: `arg` (`steel`, `titanium`, `aluminium`, `none`) or, without it, the class
+/// of the room-temperature density.
+pub fn material_class(arg: Option<&str>, material: &cutcal_model::Material) -> Result<Option<MaterialClass>> {
+    match arg {
+        Some(s) if s.trim().eq_ignore_ascii_case("none") => Ok(None),
+        Some(s) => MaterialClass::parse(s)
+            .map(Some)
+            .ok_or_else(|| anyhow::anyhow!("--class {s:?}: expected steel, titanium, aluminium or none")),
+        None => Ok(MaterialClass::from_density(material.thermal.density.value(material.room_c))),
+    }
 }
 
 /// The readable report of a joint identification.
@@ -75,6 +113,39 @@ pub fn table(material: &str, id: &OxleyIdentification) -> String {
     if !id.statistics.at_bounds.is_empty() {
         let _ = writeln!(s, "  at bounds: {}", id.statistics.at_bounds.join(", "));
     }
+    let b = &id.bounds_used;
+    let _ = writeln!(
+        s,
+        "  bounds used: n [{}, {}], C [{}, {}], m [{}, {}] ({})",
+        b.n[0],
+        b.n[1],
+        b.c[0],
+        b.c[1],
+        b.m[0],
+        b.m[1],
+        match &id.literature {
+            Some(l) => format!(
+                "material bounds within the {} literature box of {} published sets",
+                l.class.name(),
+                l.sets.len()
+            ),
+            None => "the material's bounds; no literature box for this material".to_string(),
+        }
+    );
+    if !id.outside_literature.is_empty() {
+        let _ = writeln!(s, "  outside the literature box: {}", id.outside_literature.join(", "));
+    }
+    if let Some(a) = &id.identifiability {
+        let _ = writeln!(
+            s,
+            "  identifiability: effective rank {} of {}, condition number {}, singular values {}",
+            a.effective_rank,
+            a.parameters.len(),
+            a.condition_number.map_or_else(|| "infinite".to_string(), |c| format!("{c:.3e}")),
+            a.singular_values.iter().map(|v| format!("{v:.3}")).collect::<Vec<_>>().join(" ")
+        );
+    }
+    let _ = writeln!(s, "  verdict: {}", verdict_line(&id.verdict));
     let _ = writeln!(
         s,
         "  rms relative error {:.2} %, starts {} (at best {}, failed {}), best start {}, {} LM iterations",
@@ -96,6 +167,17 @@ pub fn table(material: &str, id: &OxleyIdentification) -> String {
     s
 }
 
+/// One line for a verdict.
+#[must_use]
+pub fn verdict_line(v: &JointVerdict) -> String {
+    match v {
+        JointVerdict::Determined => "determined: every free parameter direction is pinned down by the data".into(),
+        JointVerdict::Undetermined { reason } => format!("REFUSED, not determined: {reason}"),
+        JointVerdict::Misfit { reason } => format!("REFUSED, the model misfits the data: {reason}"),
+        JointVerdict::NotConverged { reason } => format!("REFUSED, not converged: {reason}"),
+    }
+}
+
 /// Runs the joint identification.
 pub fn run(args: &IdentifyOxleyArgs) -> Result<()> {
     let mf = load_material(&args.material)?;
@@ -104,7 +186,9 @@ pub fn run(args: &IdentifyOxleyArgs) -> Result<()> {
         &[MeasuredColumn::CuttingForce, MeasuredColumn::FeedForce],
         "the joint Oxley identification needs measured Fc and Ft (tc where measured)",
     )?;
-    let bounds = jc_bounds(&mf)?;
+    let mut bounds = jc_bounds(&mf)?;
+    let fixes = args.fix.iter().map(|f| parse_fix(f)).collect::<Result<Vec<_>>>()?;
+    apply_fixes(&mut bounds, &fixes)?;
     let oxley = oxley_options(mf.oxley.as_ref(), false, None, None, None, None, None)
         .with_context(|| format!("Oxley options for {}", args.material.display()))?;
     let options = JointOptions {
@@ -119,6 +203,7 @@ pub fn run(args: &IdentifyOxleyArgs) -> Result<()> {
         &mf.material,
         &tests,
         &bounds,
+        material_class(args.class.as_deref(), &mf.material)?,
         constants,
         &options,
         &MultistartOptions::new(args.starts, args.seed),

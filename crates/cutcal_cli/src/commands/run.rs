@@ -50,6 +50,13 @@ pub struct ProjectIdentify {
     pub starts: usize,
     /// Seed.
     pub seed: u64,
+    /// Material class of the literature box (steel, titanium, aluminium, none); default: from the
+    /// density.
+    #[serde(default)]
+    pub class: Option<String>,
+    /// Parameters fixed at a value (a_mpa, b_mpa, n, c, m), e.g. the n, C and m of a published set.
+    #[serde(default)]
+    pub fix: std::collections::BTreeMap<String, f64>,
 }
 
 /// A project file.
@@ -104,6 +111,13 @@ pub struct ProjectJoint {
     pub starts: usize,
     /// Seed.
     pub seed: u64,
+    /// Material class of the literature box (steel, titanium, aluminium, none); default: from the
+    /// density.
+    #[serde(default)]
+    pub class: Option<String>,
+    /// Parameters fixed at a value (a_mpa, b_mpa, n, c, m), e.g. the n, C and m of a published set.
+    #[serde(default)]
+    pub fix: std::collections::BTreeMap<String, f64>,
 }
 
 /// The paper's FE result for a test beside cutcal's forward prediction (Table 6).
@@ -451,7 +465,10 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
         let measured = tests.iter().filter(|t| t.measured.cutting_force_n_per_m.is_some()).count();
         if measured >= 2 {
             progress(&format!("joint Oxley identification over {measured} tests ({} starts)", jc_cfg.starts));
-            let bounds = super::identify::jc_bounds(&mf)?;
+            let mut bounds = super::identify::jc_bounds(&mf)?;
+            let fixes: Vec<(String, f64)> = jc_cfg.fix.iter().map(|(k, v)| (k.clone(), *v)).collect();
+            super::identify_oxley::apply_fixes(&mut bounds, &fixes)
+                .with_context(|| format!("[joint] fix of project {}", project.name))?;
             let options = cutcal_ident::joint::JointOptions {
                 oxley: oxley_options.clone(),
                 physics: cutcal_model::oxley::Physics::baseline(),
@@ -461,22 +478,26 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
             };
             let constants =
                 cutcal_ident::JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };
+            let class = super::identify_oxley::material_class(jc_cfg.class.as_deref(), &mf.material)
+                .with_context(|| format!("[joint] class of {}", project.name))?;
             let id = cutcal_ident::joint::identify_oxley(
                 &mf.material,
                 &tests,
                 &bounds,
+                class,
                 constants,
                 &options,
                 &cutcal_ident::MultistartOptions::new(jc_cfg.starts, jc_cfg.seed),
             )
             .with_context(|| format!("joint Oxley identification from {}", tests_path.display()))?;
-            write(
-                "jc_joint_oxley.toml",
-                &super::identify::jc_toml(
-                    &id.jc,
-                    format!("cutcal {} run {}: joint Oxley fit", env!("CARGO_PKG_VERSION"), project.name),
-                )?,
-            )?;
+            // Only a determined set is written as an identified JC file.
+            if id.verdict.is_determined() {
+                let mut source = format!("cutcal {} run {}: joint Oxley fit", env!("CARGO_PKG_VERSION"), project.name);
+                if !id.outside_literature.is_empty() {
+                    source.push_str(&format!("; outside the literature box: {}", id.outside_literature.join(", ")));
+                }
+                write("jc_joint_oxley.toml", &super::identify::jc_toml(&id.jc, source)?)?;
+            }
             joint = Some(id);
         }
     }
@@ -735,8 +756,9 @@ pub fn render_markdown(r: &ProjectReport) -> String {
             j.relative_errors.len(), if j.statistics.at_bounds.is_empty() { "none".to_string() } else { j.statistics.at_bounds.join(", ") },
             j.starts_at_best, j.starts
         );
-        if j.relative_errors.len() < 2 * 5 {
-            let _ = writeln!(s, "\nCaution: {} residuals for 5 parameters: the set fits these tests but is poorly determined (see the correlations in report.json).", j.relative_errors.len());
+        let _ = writeln!(s, "\nVerdict: {}.", super::identify_oxley::verdict_line(&j.verdict));
+        if !j.verdict.is_determined() {
+            let _ = writeln!(s, "\nNo `jc_joint_oxley.toml` is written: the set above is a best fit, not an identification. Fix the weakest parameters (for example n, C and m at a published set of the class) or add tests at other speeds and feeds.");
         }
         let _ = writeln!(s);
     }

@@ -1,5 +1,6 @@
 //! Small statistics kernel: normal, Student t and F tail probabilities, the t quantile, AICc and the
-//! Wilson interval. Closed forms and continued fractions only, so the diagnosis needs no stats crate.
+//! Wilson interval. Closed forms and continued fractions only, so identification and diagnosis need no
+//! stats crate.
 //!
 //! **Sources:** regularised incomplete beta by Lentz's continued fraction and the Lanczos log-gamma
 //! (Press et al., *Numerical Recipes*, 3rd ed., Secs 6.1 and 6.4); erfc by the Chebyshev fit of
