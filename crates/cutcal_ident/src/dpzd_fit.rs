@@ -276,6 +276,10 @@ pub struct JcIdentification {
     pub failed_starts: usize,
     /// LM iterations of the best start.
     pub iterations: usize,
+    /// Why the best start's LM stopped (never the iteration cap: that is an error).
+    pub termination: crate::lm::Termination,
+    /// Starts that hit the LM iteration cap (excluded from the best).
+    pub unconverged_starts: usize,
 }
 
 /// Identifies JC from the `points` interior points of a zone solution (paper Eq 15).
@@ -324,6 +328,16 @@ pub fn identify(
 ) -> Result<JcIdentification, IdentError> {
     let b = bounds.to_bounds()?;
     let report = multistart(problem, &b, options)?;
+    if report.best.termination == crate::lm::Termination::MaxIterations {
+        return Err(IdentError::NotConverged {
+            what: format!("Levenberg-Marquardt (all {} starts)", report.starts),
+            iterations: report.best.iterations,
+            detail: format!(
+                "every start stopped at the iteration cap; the best objective was {:.4e} MPa^2 (raise the cap or check the bounds)",
+                report.best.ssr
+            ),
+        });
+    }
     if !report.best.ssr.is_finite() {
         return Err(IdentError::NonFinite {
             what: "objective".into(),
@@ -345,6 +359,8 @@ pub fn identify(
         best_start: report.best_start,
         failed_starts: report.failed_starts,
         iterations: report.best.iterations,
+        termination: report.best.termination,
+        unconverged_starts: report.unconverged_starts,
     })
 }
 

@@ -240,6 +240,8 @@ pub struct OxleyIdentification {
     pub iterations: usize,
     /// Why the best start's LM stopped.
     pub termination: Termination,
+    /// Starts that hit the LM iteration cap (excluded from the best while any start converged).
+    pub unconverged_starts: usize,
     /// The bounds the fit used (the user's A and B; n, C and m intersected with the literature box).
     pub bounds_used: JcBounds,
     /// The literature box of the material class, when the class is known.
@@ -381,7 +383,7 @@ pub fn identify_oxley(
     let verdict = if report.best.termination == Termination::MaxIterations {
         JointVerdict::NotConverged {
             reason: format!(
-                "the best start stopped at the LM iteration cap ({} iterations) without meeting a tolerance",
+                "every start stopped at the LM iteration cap ({} iterations) without meeting a tolerance",
                 report.best.iterations
             ),
         }
@@ -426,6 +428,7 @@ pub fn identify_oxley(
         failed_starts: report.failed_starts,
         iterations: report.best.iterations,
         termination: report.best.termination,
+        unconverged_starts: report.unconverged_starts,
         bounds_used,
         literature,
         outside_literature,

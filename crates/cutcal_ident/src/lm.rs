@@ -337,6 +337,19 @@ mod tests {
     }
 
     #[test]
+    fn an_iteration_cap_is_reported_as_such() {
+        // Two iterations from (-1.2, 1) cannot reach Rosenbrock's minimum: the result says
+        // MaxIterations, never a tolerance it did not meet.
+        let b = Bounds::new(vec!["x".into(), "y".into()], vec![-2.0, -1.0], vec![2.0, 3.0]).unwrap();
+        let capped = LmOptions { max_iterations: 2, ..LmOptions::precise() };
+        let r = minimise(&Rosen, &b, &DVector::from_vec(vec![-1.2, 1.0]), &capped).unwrap();
+        assert_eq!(r.termination, Termination::MaxIterations);
+        assert_eq!(r.iterations, 2);
+        let r = minimise(&Rosen, &b, &DVector::from_vec(vec![-1.2, 1.0]), &LmOptions::precise()).unwrap();
+        assert_ne!(r.termination, Termination::MaxIterations);
+    }
+
+    #[test]
     fn rejects_inverted_bounds() {
         assert!(Bounds::new(vec!["x".into()], vec![1.0], vec![0.0]).is_err());
         assert!(Bounds::new(vec!["x".into()], vec![f64::NAN], vec![0.0]).is_err());

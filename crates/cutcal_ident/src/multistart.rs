@@ -6,7 +6,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use crate::error::IdentError;
-use crate::lm::{minimise, Bounds, LmOptions, LmResult, Problem};
+use crate::lm::{minimise, Bounds, LmOptions, LmResult, Problem, Termination};
 
 /// Multistart settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,6 +44,10 @@ pub struct MultistartReport {
     pub starts_at_best: usize,
     /// SSR reached from each start (`None` where it failed).
     pub start_ssr: Vec<Option<f64>>,
+    /// Starts that stopped at the LM iteration cap without meeting a tolerance. They are not
+    /// chosen as the best while any start converged; when none did, `best.termination` is
+    /// [`Termination::MaxIterations`] and callers must report it (a typed non-convergence).
+    pub unconverged_starts: usize,
 }
 
 /// The start points in unit-box coordinates: the centre, then a Latin hypercube of `starts - 1`.
@@ -82,7 +86,10 @@ pub fn multistart<P: Problem + ?Sized>(
     if options.starts == 0 || options.starts > 100_000 {
         return Err(IdentError::InvalidOptions(format!("starts must be in 1..=100000, got {}", options.starts)));
     }
+    // The best converged start, and the best of all (used only when no start converged).
     let mut best: Option<(usize, LmResult)> = None;
+    let mut best_capped: Option<(usize, LmResult)> = None;
+    let mut unconverged_starts = 0;
     let mut start_ssr = Vec::with_capacity(options.starts);
     let mut first_error = None;
     for (i, z0) in start_points(bounds.len(), options.starts, options.seed).into_iter().enumerate() {
@@ -90,8 +97,14 @@ pub fn multistart<P: Problem + ?Sized>(
         match minimise(problem, bounds, &p0, &options.lm) {
             Ok(res) => {
                 start_ssr.push(Some(res.ssr));
-                if best.as_ref().map_or(true, |(_, b)| res.ssr < b.ssr) {
-                    best = Some((i, res));
+                let slot = if res.termination == Termination::MaxIterations {
+                    unconverged_starts += 1;
+                    &mut best_capped
+                } else {
+                    &mut best
+                };
+                if slot.as_ref().map_or(true, |(_, b)| res.ssr < b.ssr) {
+                    *slot = Some((i, res));
                 }
             }
             Err(e) => {
@@ -100,14 +113,22 @@ pub fn multistart<P: Problem + ?Sized>(
             }
         }
     }
-    let (best_start, best) = best.ok_or_else(|| IdentError::AllStartsFailed {
+    let (best_start, best) = best.or(best_capped).ok_or_else(|| IdentError::AllStartsFailed {
         starts: options.starts,
         first: first_error.clone().unwrap_or_default(),
     })?;
     let tol = options.same_minimum_rel_tol * best.ssr.max(f64::MIN_POSITIVE) + 1e-300;
     let starts_at_best = start_ssr.iter().flatten().filter(|s| (**s - best.ssr).abs() <= tol).count();
     let failed_starts = start_ssr.iter().filter(|s| s.is_none()).count();
-    Ok(MultistartReport { best, best_start, starts: options.starts, failed_starts, starts_at_best, start_ssr })
+    Ok(MultistartReport {
+        best,
+        best_start,
+        starts: options.starts,
+        failed_starts,
+        starts_at_best,
+        start_ssr,
+        unconverged_starts,
+    })
 }
 
 /// Quality of a least-squares fit and what the data cannot pin down.
@@ -185,6 +206,39 @@ pub fn fit_statistics<P: Problem + ?Sized>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Rosenbrock as least squares: r = (10 (y - x^2), 1 - x); minimum (1, 1).
+    struct Rosen;
+    impl Problem for Rosen {
+        fn parameter_count(&self) -> usize {
+            2
+        }
+        fn residual_count(&self) -> usize {
+            2
+        }
+        fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
+            out[0] = 10.0 * (p[1] - p[0] * p[0]);
+            out[1] = 1.0 - p[0];
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn capped_starts_are_counted_and_never_preferred_to_a_converged_one() {
+        let b = Bounds::new(vec!["x".into(), "y".into()], vec![-2.0, -1.0], vec![2.0, 3.0]).unwrap();
+        // A cap of 12 iterations: with seed 5, 3 of 9 starts stop at the cap and 6 converge.
+        let mut o = MultistartOptions::new(9, 5);
+        o.lm.max_iterations = 12;
+        let r = multistart(&Rosen, &b, &o).unwrap();
+        println!("unconverged {} of 9, best {:?}", r.unconverged_starts, r.best.termination);
+        assert!(r.unconverged_starts > 0 && r.unconverged_starts < 9, "{}", r.unconverged_starts);
+        assert_ne!(r.best.termination, Termination::MaxIterations);
+        // A cap of 1: no start converges; the best says MaxIterations for the caller to report.
+        o.lm.max_iterations = 1;
+        let r = multistart(&Rosen, &b, &o).unwrap();
+        assert_eq!(r.unconverged_starts, 9);
+        assert_eq!(r.best.termination, Termination::MaxIterations);
+    }
 
     #[test]
     fn start_points_are_a_latin_hypercube_and_deterministic() {

@@ -202,6 +202,9 @@ pub struct DpzdIdentifyReport {
     pub starts_at_best: usize,
     /// Index of the best start.
     pub best_start: usize,
+    /// Starts that stopped at the LM iteration cap (excluded from the best; if every start does,
+    /// the identification fails with a typed non-convergence).
+    pub unconverged_starts: usize,
     /// Multistart seed.
     pub seed: u64,
     /// Residual field at the fit points: x (mm) and JC - DPZD stress (MPa).
@@ -324,6 +327,7 @@ pub fn identify_dpzd(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSetti
         starts: id.starts,
         starts_at_best: id.starts_at_best,
         best_start: id.best_start,
+        unconverged_starts: id.unconverged_starts,
         seed: settings.multistart.seed,
         residual_field: xs.iter().zip(&id.residuals_mpa).map(|(x, r)| [*x, *r]).collect(),
     };
@@ -456,6 +460,13 @@ pub fn render_table(r: &DpzdIdentifyReport) -> String {
         "  objective (Eq 15) {:.2} MPa, RMS {:.2} MPa; {}/{} starts reached the best minimum (seed {})",
         r.objective_mpa, r.rms_mpa, r.starts_at_best, r.starts, r.seed
     );
+    if r.unconverged_starts > 0 {
+        let _ = writeln!(
+            s,
+            "  {} of {} starts stopped at the LM iteration cap and were excluded",
+            r.unconverged_starts, r.starts
+        );
+    }
     if let Some(c) = &r.correlation {
         let _ = writeln!(s, "  correlation of free parameters {:?}:", r.free);
         for row in c {

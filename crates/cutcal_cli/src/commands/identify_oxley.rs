@@ -145,6 +145,13 @@ pub fn table(material: &str, id: &OxleyIdentification) -> String {
             a.singular_values.iter().map(|v| format!("{v:.3}")).collect::<Vec<_>>().join(" ")
         );
     }
+    if id.unconverged_starts > 0 {
+        let _ = writeln!(
+            s,
+            "  {} of {} starts stopped at the LM iteration cap and were excluded",
+            id.unconverged_starts, id.starts
+        );
+    }
     let _ = writeln!(s, "  verdict: {}", verdict_line(&id.verdict));
     let _ = writeln!(
         s,
