@@ -164,3 +164,66 @@ fn joint_oxley_fit_refuses_a_set_the_data_do_not_determine() {
     let e = stderr(&bad);
     assert!(e.contains("--fix q=1") && e.contains("a_mpa, b_mpa, n, c, m"), "{e}");
 }
+
+/// The default h is the forward model's zone thickness l_AB/C0 with the identified set: checked
+/// through a different entry point, `cutcal predict` with the written set, whose test-3 solution
+/// must give the same l_AB/C0. The h-sensitivity table brackets it from h/2 to 2h.
+#[test]
+fn default_h_is_the_forward_models_zone_thickness_with_the_identified_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let jc = dir.path().join("jc.toml");
+    let jc_s = jc.to_str().unwrap();
+    let v = json(&[
+        "identify",
+        "--material",
+        "fixtures/materials/c38.toml",
+        "--tests",
+        "fixtures/tests/c38.csv",
+        "--test",
+        "3",
+        "--json",
+        "--out-jc",
+        jc_s,
+    ]);
+    let h_mm = v["h_mm"].as_f64().unwrap();
+    assert!(v["h_source"].as_str().unwrap().starts_with("forward model:"), "{}", v["h_source"]);
+    assert!(v["h_history_mm"].as_array().unwrap().len() >= 3);
+    // Thinner than the uncut chip (0.075 mm), as a shear zone must be.
+    assert!(h_mm > 0.0 && h_mm < 0.075, "h {h_mm}");
+    let p = json(&[
+        "predict",
+        "--material",
+        "fixtures/materials/c38.toml",
+        "--tests",
+        "fixtures/tests/c38.csv",
+        "--jc",
+        jc_s,
+        "--json",
+    ]);
+    let row = p["rows"].as_array().unwrap().iter().find(|r| r["test"] == "3").expect("test 3");
+    let l = row["prediction"]["shear_plane_length_m"].as_f64().unwrap();
+    let c0 = row["prediction"]["c0"].as_f64().unwrap();
+    assert!((l / c0 * 1e3 / h_mm - 1.0).abs() < 2e-3, "l/C0 {} mm vs h {h_mm} mm", l / c0 * 1e3);
+    // The sensitivity table: 5 rows from h/2 to 2h, A rising with h (A, B and C reparametrise).
+    let rows = v["h_sensitivity"].as_array().unwrap();
+    assert_eq!(rows.len(), 5);
+    assert!((rows[0]["h_mm"].as_f64().unwrap() / h_mm - 0.5).abs() < 1e-9);
+    assert!((rows[4]["h_mm"].as_f64().unwrap() / h_mm - 2.0).abs() < 1e-9);
+    let a: Vec<f64> = rows.iter().map(|r| r["a_mpa"].as_f64().unwrap()).collect();
+    assert!(a.windows(2).all(|w| w[1] > w[0]), "{a:?}");
+    // --h-mm overrides and says so.
+    let u = json(&[
+        "identify",
+        "--material",
+        "fixtures/materials/c38.toml",
+        "--tests",
+        "fixtures/tests/c38.csv",
+        "--test",
+        "3",
+        "--h-mm",
+        "0.05",
+        "--json",
+    ]);
+    assert_eq!(u["h_mm"].as_f64().unwrap(), 0.05);
+    assert!(u["h_source"].as_str().unwrap().contains("--h-mm"));
+}

@@ -8,6 +8,8 @@
 //!   `converged` identification;
 //! - [`joint`]: JC fitted jointly to several tests through the extended Oxley model, with
 //!   [`literature`] boxes for n, C and m and an [`identifiability`] verdict;
+//! - [`zone_thickness`]: the zone thickness h = l_AB / C0 of the forward model, made
+//!   self-consistent with the identified set;
 //! - [`bootstrap`]: parameter uncertainty by resampling the measurements (parallel, deterministic).
 //!
 //! Data flow: `cutcal_model::dpzd::ZoneSolution` -> [`dpzd_fit::identify_from_zone`] ->
@@ -24,6 +26,7 @@ pub mod lm;
 pub mod multistart;
 pub mod quadrature;
 pub mod stats;
+pub mod zone_thickness;
 
 pub use dpzd_fit::{identify_from_zone, identify_from_zone_with, JcBounds, JcConstants, JcIdentification};
 pub use error::IdentError;

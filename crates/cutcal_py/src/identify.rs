@@ -142,7 +142,8 @@ pub fn identify(mf: &MaterialFile, test: &CuttingTest, req: &IdentifyRequest) ->
     let args = cli_args(req)?;
     let settings = settings_from_args(&args, mf).map_err(|e| face_of(&e))?;
     let out = identify_dpzd(mf, test, &settings).map_err(|e| face_of(&e))?;
-    let boot = run_bootstrap(&args.uncertainty, mf, test, &settings).map_err(|e| face_of(&e))?;
+    let boot =
+        run_bootstrap(&args.uncertainty, mf, test, &out.settings_at_h_used(&settings)).map_err(|e| face_of(&e))?;
     let json = report_json(&out.report, boot.as_ref()).map_err(|e| face_of(&e))?;
     let spread_json = boot.as_ref().map(serde_json::to_string).transpose().map_err(face)?;
     let profile = out.zone.profile(req.field_points).map_err(face)?;

@@ -209,6 +209,12 @@ pub struct DpzdIdentifyReport {
     pub seed: u64,
     /// Residual field at the fit points: x (mm) and JC - DPZD stress (MPa).
     pub residual_field: Vec<[f64; 2]>,
+    /// Where h comes from (user, paper preset, or the forward model's l_AB/C0).
+    pub h_source: String,
+    /// The h values of the forward-model fixed point, mm (one value when h was given).
+    pub h_history_mm: Vec<f64>,
+    /// A, B and C identified over h/2..2h around the h used.
+    pub h_sensitivity: Vec<HSensitivityRow>,
 }
 
 /// Settings of one DPZD identification (resolved from CLI or project file).
@@ -218,8 +224,11 @@ pub struct DpzdSettings {
     pub model: ModelChoice,
     /// Identification preset.
     pub preset: Preset,
-    /// Zone thickness, m.
+    /// Zone thickness, m (the start of the fixed point when `h_from_forward_model`).
     pub h_m: f64,
+    /// Take h from the forward model (`l_AB / C0`, self-consistent with the identified set)
+    /// instead of `h_m`.
+    pub h_from_forward_model: bool,
     /// Exponent r.
     pub r: f64,
     /// Fit points.
@@ -247,6 +256,15 @@ impl DpzdSettings {
     }
 }
 
+impl DpzdOutcome {
+    /// `settings` with h fixed at the value this outcome used (for the Monte-Carlo propagation,
+    /// which varies the measurements at that h; h's own influence is the h-sensitivity table).
+    #[must_use]
+    pub fn settings_at_h_used(&self, settings: &DpzdSettings) -> DpzdSettings {
+        DpzdSettings { h_m: self.report.h_mm * 1e-3, h_from_forward_model: false, ..settings.clone() }
+    }
+}
+
 /// Everything a DPZD identification produced.
 #[derive(Debug, Clone)]
 pub struct DpzdOutcome {
@@ -266,8 +284,118 @@ pub fn jc_bounds(mf: &MaterialFile) -> Result<JcBounds> {
     Ok(JcBounds { a_mpa: b.a_mpa, b_mpa: b.b_mpa, n: b.n, c: b.c, m: b.m })
 }
 
-/// Runs the DPZD identification of `test` (library entry point shared by the CLI and `cutcal run`).
+/// Relative tolerance and cap of the zone-thickness fixed point.
+const H_FIXED_POINT: (f64, usize) = (1e-3, 30);
+/// Factors of the h-sensitivity table around the h used.
+const H_SENSITIVITY_FACTORS: [f64; 5] = [0.5, 0.707, 1.0, 1.414, 2.0];
+
+/// Runs the DPZD identification of `test` (library entry point shared by the CLI and `cutcal run`):
+/// h as given, or from the forward model (`cutcal_ident::zone_thickness`), and the h-sensitivity
+/// table of A, B and C over h/2..2h.
 pub fn identify_dpzd(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSettings) -> Result<DpzdOutcome> {
+    let (mut out, source, history) = if settings.h_from_forward_model {
+        let oxley = crate::commands::predict::oxley_options(mf.oxley.as_ref(), false, None, None, None, None, None)?;
+        let mut last: Option<DpzdOutcome> = None;
+        let fp = cutcal_ident::zone_thickness::self_consistent_h::<anyhow::Error>(
+            settings.h_m,
+            H_FIXED_POINT.0,
+            H_FIXED_POINT.1,
+            |h| {
+                let o = identify_dpzd_at(mf, test, &DpzdSettings { h_m: h, ..settings.clone() })?;
+                let z = cutcal_ident::zone_thickness::oxley_zone_thickness(
+                    &mf.material,
+                    test,
+                    &o.identification.jc,
+                    &oxley,
+                    mf.material.room_c,
+                )?;
+                last = Some(o);
+                Ok(z.h_m)
+            },
+        );
+        match fp {
+            Ok(fp) => {
+                let o = identify_dpzd_at(mf, test, &DpzdSettings { h_m: fp.h_m, ..settings.clone() })?;
+                let history: Vec<f64> = fp.history_m.iter().map(|h| h * 1e3).collect();
+                let source = if fp.converged {
+                    format!(
+                        "forward model: l_AB/C0 of the test's extended-Oxley solution with the identified set, self-consistent to {} in {} steps from {} mm",
+                        H_FIXED_POINT.0,
+                        fp.history_m.len() - 1,
+                        settings.h_m * 1e3
+                    )
+                } else {
+                    format!(
+                        "forward model, NOT converged: the fixed point h = l_AB/C0(JC(h)) did not settle in {} steps (history in h_history_mm); the last value is used",
+                        H_FIXED_POINT.1
+                    )
+                };
+                (o, source, history)
+            }
+            Err(e) => {
+                let o = match last {
+                    Some(o) if (o.report.h_mm - settings.h_m * 1e3).abs() < 1e-12 => o,
+                    _ => identify_dpzd_at(mf, test, &DpzdSettings { h_m: settings.h_m, ..settings.clone() })?,
+                };
+                let source =
+                    format!("{} mm default: the forward model gave no zone thickness ({:#})", settings.h_m * 1e3, e);
+                (o, source, vec![settings.h_m * 1e3])
+            }
+        }
+    } else {
+        let o = identify_dpzd_at(mf, test, settings)?;
+        let source = match settings.preset {
+            Preset::Paper => {
+                "paper preset: 0.1 mm, the choice that reproduces Table 4 (the paper states no h)".to_string()
+            }
+            Preset::Converged => "given by the user (--h-mm)".to_string(),
+        };
+        (o, source, vec![settings.h_m * 1e3])
+    };
+    let h_used = out.report.h_mm * 1e-3;
+    let mut rows = Vec::new();
+    for f in H_SENSITIVITY_FACTORS {
+        let row = match identify_dpzd_at(mf, test, &DpzdSettings { h_m: h_used * f, ..settings.clone() }) {
+            Ok(o) => HSensitivityRow {
+                h_mm: h_used * f * 1e3,
+                a_mpa: Some(o.identification.jc.a_pa / 1e6),
+                b_mpa: Some(o.identification.jc.b_pa / 1e6),
+                c: Some(o.identification.jc.c),
+                note: None,
+            },
+            Err(e) => HSensitivityRow {
+                h_mm: h_used * f * 1e3,
+                a_mpa: None,
+                b_mpa: None,
+                c: None,
+                note: Some(format!("not available: {e:#}")),
+            },
+        };
+        rows.push(row);
+    }
+    out.report.h_source = source;
+    out.report.h_history_mm = history;
+    out.report.h_sensitivity = rows;
+    Ok(out)
+}
+
+/// One row of the h-sensitivity table.
+#[derive(Debug, Clone, Serialize)]
+pub struct HSensitivityRow {
+    /// Zone thickness, mm.
+    pub h_mm: f64,
+    /// Identified A, MPa (`None`: not available, see `note`).
+    pub a_mpa: Option<f64>,
+    /// Identified B, MPa.
+    pub b_mpa: Option<f64>,
+    /// Identified C.
+    pub c: Option<f64>,
+    /// Why a value is not available.
+    pub note: Option<String>,
+}
+
+/// One DPZD identification at the settings' h.
+fn identify_dpzd_at(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSettings) -> Result<DpzdOutcome> {
     let state = ShearPlaneState::from_test(test).with_context(|| format!("test {}", test.id))?;
     let config = settings.config()?;
     let zone = dpzd::solve(&mf.material, &state, &config)
@@ -330,6 +458,9 @@ pub fn identify_dpzd(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSetti
         unconverged_starts: id.unconverged_starts,
         seed: settings.multistart.seed,
         residual_field: xs.iter().zip(&id.residuals_mpa).map(|(x, r)| [*x, *r]).collect(),
+        h_source: String::new(),
+        h_history_mm: Vec::new(),
+        h_sensitivity: Vec::new(),
     };
     Ok(DpzdOutcome { zone, identification: id, report })
 }
@@ -382,6 +513,7 @@ pub fn settings_from_args(args: &IdentifyArgs, mf: &MaterialFile) -> Result<Dpzd
             (args.h_mm.unwrap_or(0.1), 51)
         }
     };
+    let h_from_forward_model = args.preset == Preset::Converged && args.h_mm.is_none();
     if !(h_mm.is_finite() && h_mm > 0.0) {
         bail!("--h-mm must be a positive number of mm, got {h_mm}");
     }
@@ -389,6 +521,7 @@ pub fn settings_from_args(args: &IdentifyArgs, mf: &MaterialFile) -> Result<Dpzd
         model: args.model,
         preset: args.preset,
         h_m: h_mm * 1e-3,
+        h_from_forward_model,
         r,
         points,
         rho_cp_original_j_per_m3_k: rho_cp * 1e6,
@@ -425,7 +558,7 @@ pub fn render_table(r: &DpzdIdentifyReport) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "cutcal identify: {} test {} ({:?} DPZD, h = {} mm, r = {})",
+        "cutcal identify: {} test {} ({:?} DPZD, h = {:.4} mm, r = {})",
         r.material, r.test, r.model, r.h_mm, r.r
     );
     let _ = writeln!(s, "  {}", r.preset_note);
@@ -455,6 +588,25 @@ pub fn render_table(r: &DpzdIdentifyReport) -> String {
         "  (no std.err: s^2 (J^T J)^-1 of deterministic model residuals has no statistical meaning; use --bootstrap N for a Monte-Carlo spread)"
     );
     let _ = writeln!(s, "  eps0 = {} 1/s, Tm = {} degC, Tr = {} degC", r.jc.eps0_per_s, r.jc.tm_c, r.jc.tr_c);
+    let _ = writeln!(s, "  h = {:.4} mm: {}", r.h_mm, r.h_source);
+    if r.h_history_mm.len() > 1 {
+        let steps: Vec<String> = r.h_history_mm.iter().map(|h| format!("{h:.4}")).collect();
+        let _ = writeln!(s, "  h fixed point [mm]: {}", steps.join(" -> "));
+    }
+    if !r.h_sensitivity.is_empty() {
+        let _ = writeln!(s, "  h sensitivity (A, B and C only reparametrise with h; n and m do not):");
+        for row in &r.h_sensitivity {
+            match (row.a_mpa, row.b_mpa, row.c) {
+                (Some(a), Some(b), Some(c)) => {
+                    let _ = writeln!(s, "    h {:>8.4} mm: A {:>8.2} MPa, B {:>8.2} MPa, C {:.5}", row.h_mm, a, b, c);
+                }
+                _ => {
+                    let _ =
+                        writeln!(s, "    h {:>8.4} mm: {}", row.h_mm, row.note.as_deref().unwrap_or("not available"));
+                }
+            }
+        }
+    }
     let _ = writeln!(
         s,
         "  objective (Eq 15) {:.2} MPa, RMS {:.2} MPa; {}/{} starts reached the best minimum (seed {})",
@@ -503,7 +655,7 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
     let settings = settings_from_args(args, &mf)?;
     let out = identify_dpzd(&mf, test, &settings)?;
     // Issue 7: bootstrap before any file is written, so a failed bootstrap leaves nothing behind.
-    let boot = super::bootstrap::run_bootstrap(&args.uncertainty, &mf, test, &settings)?;
+    let boot = super::bootstrap::run_bootstrap(&args.uncertainty, &mf, test, &out.settings_at_h_used(&settings))?;
     if let Some(p) = &args.fields_csv {
         write_atomic(p, fields_csv(&out.zone, 201)?.as_bytes())?;
     }

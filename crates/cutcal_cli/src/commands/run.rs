@@ -279,6 +279,7 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
                     preset: super::identify::Preset::Paper,
                     model: *model,
                     h_m: idc.h_mm * 1e-3,
+                    h_from_forward_model: false,
                     r: dp.r,
                     points: idc.points,
                     rho_cp_original_j_per_m3_k: dp.rho_cp_original_j_per_cm3_k * 1e6,
