@@ -1,6 +1,7 @@
 //! End-to-end tests of the `cutcal` binary: outputs, exit codes and located error messages.
 
 mod bootstrap;
+mod card_law;
 mod catalogue;
 mod determinism;
 mod identify;
