@@ -22,7 +22,7 @@ fn run_with_threads(threads: usize, extra: &[&str]) -> Vec<u8> {
 
 #[test]
 fn bootstrap_reports_spread_and_is_independent_of_threads() {
-    let args = ["--json", "--bootstrap", "64", "--seed", "3"];
+    let args = ["--json", "--bootstrap", "64", "--seed", "3", "--noise-only"];
     let one = run_with_threads(1, &args);
     let two = run_with_threads(2, &args);
     assert!(one == two, "bootstrap output differs between 1 and 2 threads");
@@ -41,6 +41,16 @@ fn bootstrap_reports_spread_and_is_independent_of_threads() {
     assert!(a["q025"].as_f64().unwrap() < mean && mean < a["q975"].as_f64().unwrap());
     // n and m sit at their bounds in every sample (paper Table 4: n = 0.25, m = 1.1): no correlation.
     assert_eq!(b["correlation"][2][0], serde_json::Value::Null);
+    assert_eq!(b["choices"], serde_json::Value::Null);
+    // By default the unstated choices h (x 1/2..2) and r (+- 1) vary too: the spread of A grows
+    // (C38 test 3 with 2000 samples: std 17 MPa from the noise alone, 56 MPa with the choices).
+    let with: serde_json::Value =
+        serde_json::from_slice(&run_with_threads(2, &["--json", "--bootstrap", "64", "--seed", "3"])).expect("JSON");
+    let wb = &with["bootstrap"];
+    assert_eq!(wb["choices"]["h_factor"][1], 2.0);
+    assert_eq!(wb["choices"]["r_half_width"], 1.0);
+    let std_with = wb["parameters"][0]["std"].as_f64().unwrap();
+    assert!(std_with > 1.5 * std, "std of A with choices {std_with}, noise only {std}");
     // Without --bootstrap the JSON has no bootstrap key.
     let plain: serde_json::Value = serde_json::from_slice(&run_with_threads(2, &["--json"])).expect("JSON");
     assert!(plain.get("bootstrap").is_none());

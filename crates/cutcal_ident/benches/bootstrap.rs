@@ -6,7 +6,7 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};
-use cutcal_ident::bootstrap::{bootstrap, BootstrapOptions, Measurement, RelativeUncertainty};
+use cutcal_ident::bootstrap::{bootstrap, BootstrapOptions, Measurement, RelativeUncertainty, Sample};
 use cutcal_ident::{identify_from_zone, IdentError, JcBounds, JcConstants, MultistartOptions};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState};
 use cutcal_model::{CuttingTest, JcParams, Material};
@@ -24,7 +24,8 @@ fn bench(c: &mut Criterion) {
     let bounds = JcBounds { a_mpa: [1.0, 2000.0], b_mpa: [1.0, 2000.0], n: [0.0, 0.25], c: [1e-4, 1.0], m: [0.9, 1.1] };
     let consts = JcConstants { eps0_per_s: 1.0, tm_c: 1460.0, tr_c: 20.0 };
     let starts = MultistartOptions::new(4, 1);
-    let identify = |m: &Measurement| -> Result<JcParams, IdentError> {
+    let identify = |s: &Sample| -> Result<JcParams, IdentError> {
+        let m = &s.measurement;
         let t = test
             .clone()
             .with_forces(Some(m.cutting_force_n_per_m), Some(m.feed_force_n_per_m))?
@@ -32,8 +33,12 @@ fn bench(c: &mut Criterion) {
         let zone = dpzd::solve(&material, &ShearPlaneState::from_test(&t)?, &cfg)?;
         Ok(identify_from_zone(&zone, 51, &bounds, consts, &starts)?.jc)
     };
-    let options =
-        BootstrapOptions { samples: 1000, seed: 1, uncertainty: RelativeUncertainty::new(0.03, 0.05).unwrap() };
+    let options = BootstrapOptions {
+        samples: 1000,
+        seed: 1,
+        uncertainty: RelativeUncertainty::new(0.03, 0.05).unwrap(),
+        choices: None,
+    };
     let mut group = c.benchmark_group("bootstrap");
     group.sample_size(10).sampling_mode(SamplingMode::Flat);
     group.bench_function("bootstrap_1000_identifications_c38_test3_4_starts", |b| {

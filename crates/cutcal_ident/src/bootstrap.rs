@@ -63,7 +63,48 @@ impl RelativeUncertainty {
     }
 }
 
-/// Bootstrap settings (no `Default`: the sample count and uncertainties are choices to state).
+/// The modelling choices the paper does not state, varied together with the measurements: the zone
+/// thickness h (log-uniform over `h_factor` times the nominal h) and the strain-rate exponent r of
+/// Eq 2 (uniform over nominal r +- `r_half_width`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct UnstatedChoices {
+    /// Range of the factor on h, e.g. `[0.5, 2.0]`.
+    pub h_factor: [f64; 2],
+    /// Half-width of the uniform range of r, e.g. 1.
+    pub r_half_width: f64,
+}
+
+impl UnstatedChoices {
+    /// Validating constructor.
+    ///
+    /// Returns an error unless `0 < h_factor[0] <= 1 <= h_factor[1] <= 100` and
+    /// `0 <= r_half_width <= 10`.
+    pub fn new(h_factor: [f64; 2], r_half_width: f64) -> Result<Self, IdentError> {
+        let [lo, hi] = h_factor;
+        if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && lo <= 1.0 && hi >= 1.0 && hi <= 100.0) {
+            return Err(IdentError::InvalidOptions(format!(
+                "the h factor range must satisfy 0 < low <= 1 <= high <= 100, got [{lo}, {hi}]"
+            )));
+        }
+        if !(r_half_width.is_finite() && (0.0..=10.0).contains(&r_half_width)) {
+            return Err(IdentError::InvalidOptions(format!("the r half-width must be in [0, 10], got {r_half_width}")));
+        }
+        Ok(Self { h_factor, r_half_width })
+    }
+}
+
+/// One Monte-Carlo sample: the perturbed measurement and the drawn choices.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Sample {
+    /// The perturbed measurement.
+    pub measurement: Measurement,
+    /// Factor on the nominal h (1 when the choices are not varied).
+    pub h_factor: f64,
+    /// Offset added to the nominal r (0 when the choices are not varied).
+    pub r_offset: f64,
+}
+
+/// Monte-Carlo settings (no `Default`: the sample count and uncertainties are choices to state).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BootstrapOptions {
     /// Number of resampled identifications (2..=1_000_000).
@@ -72,6 +113,8 @@ pub struct BootstrapOptions {
     pub seed: u64,
     /// Measurement uncertainties.
     pub uncertainty: RelativeUncertainty,
+    /// The unstated choices varied with the measurements; `None`: measurement noise only.
+    pub choices: Option<UnstatedChoices>,
 }
 
 /// Spread of one identified parameter over the successful samples.
@@ -104,6 +147,8 @@ pub struct BootstrapReport {
     pub seed: u64,
     /// The uncertainties sampled.
     pub uncertainty: RelativeUncertainty,
+    /// The unstated choices varied (`None`: measurement noise only).
+    pub choices: Option<UnstatedChoices>,
     /// Spread of A (MPa), B (MPa), n, C, m, in that order.
     pub parameters: Vec<ParameterSpread>,
     /// Pearson correlation matrix in the order of `parameters`; `None` where a parameter does not
@@ -123,11 +168,39 @@ fn standard_normal(rng: &mut ChaCha8Rng) -> f64 {
 /// ChaCha8 stream `index` of `seed` (forces first, then chip thickness).
 #[must_use]
 pub fn perturbed(nominal: &Measurement, uncertainty: &RelativeUncertainty, seed: u64, index: usize) -> Measurement {
+    sample(nominal, uncertainty, None, seed, index).measurement
+}
+
+/// Sample `index`: the measurement of [`perturbed`], then (when `choices` is given) ln h factor
+/// uniform over the log range and r offset uniform over +- the half-width, drawn after the
+/// measurement from the same stream (so the measurements do not depend on whether choices vary).
+#[must_use]
+pub fn sample(
+    nominal: &Measurement,
+    uncertainty: &RelativeUncertainty,
+    choices: Option<&UnstatedChoices>,
+    seed: u64,
+    index: usize,
+) -> Sample {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(index as u64);
-    let fc = standard_normal(&mut rng);
-    let ft = standard_normal(&mut rng);
-    let tc = standard_normal(&mut rng);
+    let measurement = measurement_draw(nominal, uncertainty, &mut rng);
+    let (h_factor, r_offset) = match choices {
+        Some(c) => {
+            let (lo, hi) = (c.h_factor[0].ln(), c.h_factor[1].ln());
+            let h = (lo + (hi - lo) * rng.gen::<f64>()).exp();
+            let r = c.r_half_width * (2.0 * rng.gen::<f64>() - 1.0);
+            (h, r)
+        }
+        None => (1.0, 0.0),
+    };
+    Sample { measurement, h_factor, r_offset }
+}
+
+fn measurement_draw(nominal: &Measurement, uncertainty: &RelativeUncertainty, rng: &mut ChaCha8Rng) -> Measurement {
+    let fc = standard_normal(rng);
+    let ft = standard_normal(rng);
+    let tc = standard_normal(rng);
     Measurement {
         cutting_force_n_per_m: nominal.cutting_force_n_per_m * (1.0 + uncertainty.force * fc),
         feed_force_n_per_m: nominal.feed_force_n_per_m * (1.0 + uncertainty.force * ft),
@@ -143,7 +216,7 @@ fn report_vector(jc: &JcParams) -> [f64; 5] {
 /// Runs `identify` on `options.samples` perturbed copies of `nominal` in parallel and summarises
 /// the identified parameters.
 ///
-/// `identify` maps a measurement to an identified JC set; it runs on rayon's pool, so it must be
+/// `identify` maps a sample (measurement and drawn choices) to an identified JC set; it runs on rayon's pool, so it must be
 /// `Sync` and should not itself spawn parallel work.
 ///
 /// Returns an error if the options are invalid or fewer than two samples succeed (the first
@@ -154,7 +227,7 @@ pub fn bootstrap<F>(
     identify: F,
 ) -> Result<BootstrapReport, IdentError>
 where
-    F: Fn(&Measurement) -> Result<JcParams, IdentError> + Sync,
+    F: Fn(&Sample) -> Result<JcParams, IdentError> + Sync,
 {
     if !(2..=1_000_000).contains(&options.samples) {
         return Err(IdentError::InvalidOptions(format!(
@@ -166,7 +239,7 @@ where
     let results: Vec<Result<[f64; 5], String>> = (0..options.samples)
         .into_par_iter()
         .map(|i| {
-            let m = perturbed(nominal, &u, options.seed, i);
+            let m = sample(nominal, &u, options.choices.as_ref(), options.seed, i);
             match identify(&m) {
                 Ok(jc) => {
                     let v = report_vector(&jc);
@@ -211,6 +284,7 @@ where
         first_failure,
         seed: options.seed,
         uncertainty: u,
+        choices: options.choices,
         parameters,
         correlation,
     })
@@ -260,12 +334,18 @@ mod tests {
         Measurement { cutting_force_n_per_m: 224e3, feed_force_n_per_m: 186e3, chip_thickness_m: 0.157e-3 };
 
     fn options(samples: usize) -> BootstrapOptions {
-        BootstrapOptions { samples, seed: 7, uncertainty: RelativeUncertainty { force: 0.03, chip_thickness: 0.05 } }
+        BootstrapOptions {
+            samples,
+            seed: 7,
+            uncertainty: RelativeUncertainty { force: 0.03, chip_thickness: 0.05 },
+            choices: None,
+        }
     }
 
     /// A stand-in identification with a known linear response: A = Fc/1000 MPa, B = Ft/1000 MPa,
     /// n = 1000 tc (mm -> a number near 0.157), C and m fixed.
-    fn linear(m: &Measurement) -> Result<JcParams, IdentError> {
+    fn linear(s: &Sample) -> Result<JcParams, IdentError> {
+        let m = &s.measurement;
         Ok(JcParams {
             a_pa: m.cutting_force_n_per_m * 1e3,
             b_pa: m.feed_force_n_per_m * 1e3,
@@ -318,12 +398,36 @@ mod tests {
     }
 
     #[test]
+    fn choices_are_drawn_in_their_ranges_without_changing_the_measurements() {
+        let c = UnstatedChoices::new([0.5, 2.0], 1.0).unwrap();
+        let u = RelativeUncertainty { force: 0.03, chip_thickness: 0.05 };
+        let (mut ln_h, mut r_sum) = (Vec::new(), 0.0);
+        for i in 0..4000 {
+            let s = sample(&NOMINAL, &u, Some(&c), 7, i);
+            // The measurement is the one drawn without choices (same stream, drawn first).
+            assert_eq!(s.measurement, perturbed(&NOMINAL, &u, 7, i));
+            assert!((0.5..=2.0).contains(&s.h_factor) && (-1.0..=1.0).contains(&s.r_offset));
+            ln_h.push(s.h_factor.ln());
+            r_sum += s.r_offset;
+        }
+        // ln h uniform on [-ln 2, ln 2]: mean 0, sd ln2/sqrt 3 = 0.400; r uniform: mean 0.
+        let (m, sd) = mean_std(&ln_h);
+        assert!(m.abs() < 0.02 && (sd - 2f64.ln() / 3f64.sqrt()).abs() < 0.01, "{m} {sd}");
+        assert!((r_sum / 4000.0).abs() < 0.03);
+        let none = sample(&NOMINAL, &u, None, 7, 3);
+        assert_eq!((none.h_factor, none.r_offset), (1.0, 0.0));
+        assert!(UnstatedChoices::new([1.5, 2.0], 1.0).is_err());
+        assert!(UnstatedChoices::new([0.5, 2.0], -1.0).is_err());
+    }
+
+    #[test]
     fn failed_samples_are_counted_and_quoted() {
-        let flaky = |m: &Measurement| {
+        let flaky = |s: &Sample| {
+            let m = &s.measurement;
             if m.chip_thickness_m > 0.157e-3 {
                 Err(IdentError::InvalidOptions("chip too thick".into()))
             } else {
-                linear(m)
+                linear(s)
             }
         };
         let r = bootstrap(&NOMINAL, &options(400), flaky).unwrap();

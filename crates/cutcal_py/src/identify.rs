@@ -41,6 +41,8 @@ pub struct IdentifyRequest {
     pub chip_uncertainty: Option<f64>,
     /// Multistart starts per bootstrap sample.
     pub bootstrap_starts: usize,
+    /// Vary only the measurements in the Monte-Carlo, not h and r (the CLI's `--noise-only`).
+    pub noise_only: bool,
     /// Points of the returned zone fields (the CLI's `--fields-csv` writes 201).
     pub field_points: usize,
 }
@@ -62,6 +64,7 @@ impl Default for IdentifyRequest {
             force_uncertainty: None,
             chip_uncertainty: None,
             bootstrap_starts: 4,
+            noise_only: false,
             field_points: 201,
         }
     }
@@ -132,6 +135,9 @@ fn cli_args(req: &IdentifyRequest) -> FaceResult<IdentifyArgs> {
             force_uncertainty: req.force_uncertainty,
             chip_uncertainty: req.chip_uncertainty,
             bootstrap_starts: req.bootstrap_starts,
+            noise_only: req.noise_only,
+            h_factor_range: vec![0.5, 2.0],
+            r_half_width: 1.0,
         },
     })
 }

@@ -16,7 +16,9 @@
 use std::fmt::Write as _;
 
 use anyhow::{Context, Result};
-use cutcal_ident::bootstrap::{bootstrap, BootstrapOptions, BootstrapReport, Measurement, RelativeUncertainty};
+use cutcal_ident::bootstrap::{
+    bootstrap, BootstrapOptions, BootstrapReport, Measurement, RelativeUncertainty, Sample, UnstatedChoices,
+};
 use cutcal_ident::{identify_from_zone_with, IdentError, JcConstants, MultistartOptions};
 use cutcal_model::dpzd::{self, ShearPlaneState};
 use cutcal_model::CuttingTest;
@@ -42,6 +44,29 @@ pub struct BootstrapArgs {
     /// Multistart starts per bootstrap sample.
     #[arg(long, default_value_t = 4)]
     pub bootstrap_starts: usize,
+    /// Vary only the measurements, not the unstated choices h and r.
+    #[arg(long)]
+    pub noise_only: bool,
+    /// Range of the factor on h varied with the measurements (log-uniform): LOW HIGH.
+    #[arg(long, num_args = 2, value_names = ["LOW", "HIGH"], default_values_t = [0.5, 2.0])]
+    pub h_factor_range: Vec<f64>,
+    /// Half-width of the uniform range of r varied with the measurements (nominal r +- this).
+    #[arg(long, default_value_t = 1.0)]
+    pub r_half_width: f64,
+}
+
+impl BootstrapArgs {
+    /// The unstated choices to vary (`None` with `--noise-only`).
+    pub fn choices(&self) -> Result<Option<UnstatedChoices>> {
+        if self.noise_only {
+            return Ok(None);
+        }
+        let [lo, hi] = match self.h_factor_range.as_slice() {
+            [lo, hi] => [*lo, *hi],
+            other => anyhow::bail!("--h-factor-range takes LOW HIGH, got {other:?}"),
+        };
+        Ok(Some(UnstatedChoices::new([lo, hi], self.r_half_width).context("--h-factor-range / --r-half-width")?))
+    }
 }
 
 /// Runs the bootstrap when `--bootstrap N` asks for it (`None` when N = 0).
@@ -70,11 +95,15 @@ pub fn run_bootstrap(
         feed_force_n_per_m: test.measured.feed_force_n_per_m.with_context(|| missing("feed force"))?,
         chip_thickness_m: test.measured.chip_thickness_m.with_context(|| missing("chip thickness"))?,
     };
-    let config = settings.config()?;
+    let choices = args.choices()?;
     let bounds = jc_bounds(mf)?;
     let constants = JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };
     let multistart = MultistartOptions { starts: args.bootstrap_starts, ..settings.multistart };
-    let identify = |m: &Measurement| -> Result<cutcal_model::JcParams, IdentError> {
+    let identify = |s: &Sample| -> Result<cutcal_model::JcParams, IdentError> {
+        let m = &s.measurement;
+        let config = DpzdSettings { h_m: settings.h_m * s.h_factor, r: settings.r + s.r_offset, ..settings.clone() }
+            .config()
+            .map_err(|e| IdentError::InvalidOptions(format!("{e:#}")))?;
         let t = test
             .clone()
             .with_forces(Some(m.cutting_force_n_per_m), Some(m.feed_force_n_per_m))?
@@ -103,7 +132,7 @@ pub fn run_bootstrap(
             .jc),
         }
     };
-    let options = BootstrapOptions { samples: args.bootstrap, seed: settings.multistart.seed, uncertainty };
+    let options = BootstrapOptions { samples: args.bootstrap, seed: settings.multistart.seed, uncertainty, choices };
     let report = bootstrap(&nominal, &options, identify)
         .with_context(|| format!("bootstrap of test {} ({} samples)", test.id, args.bootstrap))?;
     Ok(Some(BootstrapOutcome { report, source }))
@@ -170,7 +199,7 @@ pub fn render_bootstrap(b: &BootstrapOutcome) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "  bootstrap: {} samples ({} failed), Fc/Ft +-{:.1} %, tc +-{:.1} % (1 sigma; {}), seed {}",
+        "  Monte-Carlo propagation (--bootstrap; no data are resampled): {} samples ({} failed), Fc/Ft +-{:.1} %, tc +-{:.1} % (1 sigma; {}), seed {}",
         b.report.samples,
         b.report.failed,
         100.0 * b.report.uncertainty.force,
@@ -178,6 +207,18 @@ pub fn render_bootstrap(b: &BootstrapOutcome) -> String {
         b.source,
         b.report.seed
     );
+    match &b.report.choices {
+        Some(c) => {
+            let _ = writeln!(
+                s,
+                "  with the unstated choices: h x [{}, {}] (log-uniform), r +- {} (uniform)",
+                c.h_factor[0], c.h_factor[1], c.r_half_width
+            );
+        }
+        None => {
+            let _ = writeln!(s, "  measurement noise only (--noise-only): h and r fixed");
+        }
+    }
     let b = &b.report;
     let _ = writeln!(s, "  parameter        mean         std        2.5 %       97.5 %");
     for p in &b.parameters {
