@@ -21,7 +21,7 @@
 //! ```text
 //! tau_f = m0 (1 - exp(-beta P)) k          (paper Eq 17)
 //! mu(P) = m0 k (1 - exp(-beta P)) / P,  mu(0) = m0 k beta,  cap tau <= m0 k
-//! k     = A / sqrt(3)                      (shear strength of the workpiece, from the JC set)
+//! k(T)  = sigma_JC(2, 1e4 1/s, T) / sqrt(3) (local shear flow stress, paper Eqs 14, 16)
 //! ```
 #![warn(missing_docs)]
 
@@ -129,6 +129,24 @@ pub struct ExportOptions {
     pub contact_pressures_pa: Vec<f64>,
     /// Fraction of plastic work converted to heat (Taylor-Quinney; not given in the paper).
     pub inelastic_heat_fraction: f64,
+    /// Tool-chip contact temperature at which the LS-DYNA FS = 2 friction table evaluates the
+    /// Eq 17 shear strength k(T): LS-DYNA's documented FS = 2 table is mu(P, v_rel) with no
+    /// temperature (docs/fe-cards.md). `None`: [`physics::default_contact_temperature_c`], stated
+    /// as a default in the deck.
+    pub contact_temperature: Option<ContactTemperature>,
+    /// Cutting speed (m/s) of the condition the deck is run for: the LS-DYNA termination time is
+    /// the paper's 8 mm cut over it (paper Sec 5.1). `None`: no `*CONTROL_TERMINATION` (stated).
+    pub cutting_speed_m_per_s: Option<f64>,
+}
+
+/// A tool-chip contact temperature and where it comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactTemperature {
+    /// Temperature, degC; must lie in [Tr, Tm) of the JC set.
+    pub temp_c: f64,
+    /// Its source, printed in the deck header (1-60 printable ASCII characters without commas),
+    /// e.g. `"measured interface temperature of test 1"`.
+    pub source: String,
 }
 
 /// Everything one export needs.
@@ -191,7 +209,6 @@ pub(crate) struct HeaderCtx {
     pub source_test: String,
     pub model_variant: String,
     pub units: String,
-    pub k_choice: String,
 }
 
 impl HeaderCtx {
@@ -201,7 +218,6 @@ impl HeaderCtx {
             source_test: input.provenance.source_test.clone(),
             model_variant: input.provenance.model_variant.clone(),
             units: units.to_string(),
-            k_choice: "k = A/sqrt(3) of the exported JC set (von Mises shear yield at the reference state)".into(),
         }
     }
 }

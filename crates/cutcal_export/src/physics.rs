@@ -8,24 +8,22 @@ use cutcal_model::{Friction, JcParams, Material};
 
 use crate::{ExportError, ExportInput};
 
-/// Shear strength k of the workpiece used by the Eq 17 cards: `k = A / sqrt(3)` (von Mises) of
-/// the exported JC set, in Pa.
-///
-/// **Source:** paper Eq 17 needs "k, the shear strength of the workpiece"; FE codes that take a
-/// friction table cannot feed the local flow stress into mu, so a representative constant is
-/// needed (fe-cards.md §1.6). We take the JC yield stress A (the initial flow stress at the
-/// reference rate and temperature) over sqrt(3); this choice is stated in every card header.
+/// Default tool-chip contact temperature (degC) for the dialects that need one constant k
+/// (the LS-DYNA FS = 2 table): the homologous temperature `T* = (T - Tr)/(Tm - Tr) = 0.5` of the
+/// JC set. **This is a stated default, not a measured or predicted value**: give the interface
+/// temperature of the cutting condition (a measurement, or the extended Oxley prediction of
+/// `cutcal predict`) when it is known. Paper Eq 16 defines T*; the value 0.5 is ours.
 ///
 /// # Example
 /// ```
 /// use cutcal_model::JcParams;
-/// // Paper Table 5, C38: A = 589 MPa -> k = 340.06 MPa.
+/// // C38 Table 5 set: Tr = 20, Tm = 1460 degC -> 740 degC.
 /// let jc = JcParams::new(589e6, 145e6, 0.25, 0.069, 1.1, 1.0, 1460.0, 20.0).unwrap();
-/// assert!((cutcal_export::physics::shear_strength_pa(&jc) / 1e6 - 340.0589).abs() < 1e-3);
+/// assert!((cutcal_export::physics::default_contact_temperature_c(&jc) - 740.0).abs() < 1e-9);
 /// ```
 #[must_use]
-pub fn shear_strength_pa(jc: &JcParams) -> f64 {
-    jc.a_pa / 3f64.sqrt()
+pub fn default_contact_temperature_c(jc: &JcParams) -> f64 {
+    jc.tr_c + 0.5 * (jc.tm_c - jc.tr_c)
 }
 
 /// Reference effective strain at which the Eq 17 shear strength k(T) is evaluated from the JC law.
@@ -115,10 +113,11 @@ pub(crate) struct MaterialTables {
 pub(crate) struct MuTable {
     pub m0: f64,
     pub beta_per_pa: f64,
-    /// The constant k = A/sqrt(3) used by the dialects that cannot take a temperature-dependent
-    /// friction table (LS-DYNA FS = 2 table, MatML parameters), Pa.
-    pub k_pa: f64,
-    pub points: Vec<(f64, f64)>,
+    /// The rows at the one contact temperature of [`crate::ExportOptions::contact_temperature_c`],
+    /// for the dialect that cannot take a temperature-dependent table (LS-DYNA FS = 2).
+    pub at_contact: MuRowsAtT,
+    /// Where the contact temperature of `at_contact` comes from.
+    pub contact_source: String,
     /// The temperature-dependent law: per contact temperature (degC, below Tm) the local k(T) (Pa)
     /// and the (P, mu) rows with that k.
     pub by_temperature: Vec<MuRowsAtT>,
@@ -321,28 +320,59 @@ pub(crate) fn prepare(input: &ExportInput<'_>) -> Result<Prepared, ExportError> 
     if !(htc.is_finite() && htc > 0.0) {
         return Err(ExportError::NonFinite { field: "heat_transfer_w_per_m2_k".into(), value: htc });
     }
-    let k_pa = ExportError::finite("shear strength k", shear_strength_pa(&jc))?;
+    let (tc, tc_source) = match &o.contact_temperature {
+        Some(c) => (c.temp_c, c.source.clone()),
+        None => (default_contact_temperature_c(&jc), "default T* = 0.5 (no interface temperature given)".to_string()),
+    };
+    if !(tc.is_finite() && tc >= jc.tr_c && tc < jc.tm_c) {
+        return Err(ExportError::BadOption {
+            field: "contact_temperature_c".into(),
+            value: tc.to_string(),
+            expected: format!("a contact temperature in [Tr, Tm) = [{}, {}) degC of the JC set", jc.tr_c, jc.tm_c),
+        });
+    }
+    check_label(&tc_source).map_err(|e| match e {
+        ExportError::BadName { name, reason } => {
+            ExportError::BadName { name, reason: format!("contact_temperature_source: {reason}") }
+        }
+        other => other,
+    })?;
+    if let Some(v) = o.cutting_speed_m_per_s {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(ExportError::BadOption {
+                field: "cutting_speed_m_per_s".into(),
+                value: v.to_string(),
+                expected: "a positive cutting speed".into(),
+            });
+        }
+    }
     let (mu_table, coulomb_mu) = match iface.friction {
         Friction::PressureDependentShear { m0, beta_per_pa } => {
-            let points = o
-                .contact_pressures_pa
-                .iter()
-                .map(|&p| Ok((p, ExportError::finite("mu(P)", eq17_mu(m0, beta_per_pa, k_pa, p))?)))
-                .collect::<Result<Vec<_>, ExportError>>()?;
-            let mut by_temperature = Vec::new();
-            for &t in &flow_temps_c {
+            let rows_at = |t: f64| -> Result<MuRowsAtT, ExportError> {
                 let k_t = ExportError::finite("local shear strength k(T)", local_shear_strength_pa(&jc, t))?;
-                if k_t <= 0.0 {
-                    continue;
-                }
-                let pts = o
+                let points = o
                     .contact_pressures_pa
                     .iter()
                     .map(|&p| Ok((p, ExportError::finite("mu(P, T)", eq17_mu(m0, beta_per_pa, k_t, p))?)))
                     .collect::<Result<Vec<_>, ExportError>>()?;
-                by_temperature.push(MuRowsAtT { temp_c: t, k_pa: k_t, points: pts });
+                Ok(MuRowsAtT { temp_c: t, k_pa: k_t, points })
+            };
+            let mut by_temperature = Vec::new();
+            for &t in &flow_temps_c {
+                let rows = rows_at(t)?;
+                if rows.k_pa > 0.0 {
+                    by_temperature.push(rows);
+                }
             }
-            (Some(MuTable { m0, beta_per_pa, k_pa, points, by_temperature }), None)
+            let at_contact = rows_at(tc)?;
+            if at_contact.k_pa <= 0.0 {
+                return Err(ExportError::BadOption {
+                    field: "contact_temperature_c".into(),
+                    value: tc.to_string(),
+                    expected: "a temperature where the JC shear strength k(T) is positive".into(),
+                });
+            }
+            (Some(MuTable { m0, beta_per_pa, at_contact, contact_source: tc_source, by_temperature }), None)
         }
         Friction::Coulomb { mu } => (None, Some(mu)),
     };

@@ -150,6 +150,8 @@ pub fn options() -> ExportOptions {
         flow_strain_rates_per_s: STANDARD_FLOW_STRAIN_RATES_PER_S.to_vec(),
         contact_pressures_pa: STANDARD_CONTACT_PRESSURES_MPA.iter().map(|p| p * 1e6).collect(),
         inelastic_heat_fraction: 0.9,
+        contact_temperature: None,
+        cutting_speed_m_per_s: None,
     }
 }
 
