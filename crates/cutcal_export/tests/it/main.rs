@@ -16,3 +16,5 @@ mod vfriction;
 mod pytools;
 // ansys-materials-manager's MatmlReader reads every MatML file (values compared).
 mod ansys_matml;
+// PyDyna parses every LS-DYNA deck; every referenced ID resolves.
+mod pydyna;
