@@ -49,6 +49,14 @@ fn pydyna_parses_every_deck_and_every_id_resolves() {
             }
             paths.push(path);
         }
+        // Without a tool material: no tool part and no contact (stated), nothing dangling.
+        let opts = common::options();
+        let no_tool = cutcal_export::ExportInput { tool: None, ..common::input(&case, &prov, &opts) };
+        let files = render(Dialect::LsDyna, &no_tool).unwrap();
+        assert!(files[0].contents.contains("NO tool material given"), "{}", case.key);
+        let path = dir.path().join(format!("notool_{}", files[0].name));
+        std::fs::write(&path, &files[0].contents).unwrap();
+        paths.push(path);
     }
     let out = Command::new(&py)
         .arg(pytools::root().join("crates/cutcal_export/tests/python/dyna_check.py"))
