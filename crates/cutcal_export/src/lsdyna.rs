@@ -142,8 +142,12 @@ pub(crate) const CUT_LENGTH_M: f64 = 8e-3;
 pub(crate) const MIN_ELEMENT_M: f64 = 5e-6;
 
 /// Initial thermal time step: the diffusion time `h^2 rho cp / (2 k)` of the paper's 5 um element
-/// at room temperature (explicit-diffusion number 1/2; Carslaw & Jaeger scaling), so the first
+/// at the lowest table temperature, so the first
 /// thermal step resolves conduction over one element. LS-DYNA then adapts it (TS = 1).
+///
+/// **Source:** the 1-D explicit conduction limit Fourier number `alpha dt / h^2 = 1/2`
+/// (Incropera & DeWitt, Fundamentals of Heat and Mass Transfer, Sec 5.10), with
+/// `alpha = k / (rho cp)` and h the paper's minimum element size (Sec 5.1).
 fn initial_thermal_step_s(t: &MaterialTables) -> f64 {
     let k0 = t.conductivity.first().copied().unwrap_or(f64::NAN);
     let rc0 = t.rho_cp.first().copied().unwrap_or(f64::NAN);
