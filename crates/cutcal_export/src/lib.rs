@@ -42,8 +42,13 @@ pub use error::ExportError;
 pub use units::UnitSystem;
 
 /// Plastic strains of tabular flow-stress cards (Abaqus tabular `*PLASTIC`, DEFORM-style FSTRES):
-/// from 0 to 5, covering primary and secondary shear zones (fe-cards.md §3: ε 0–5).
-pub const STANDARD_PLASTIC_STRAINS: [f64; 10] = [0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0];
+/// from 0 to 5, covering primary and secondary shear zones (fe-cards.md §3: ε 0–5), with
+/// 0.001-0.005 for the steep start of the JC hardening term. Linear interpolation between them stays
+/// within 1 % of the JC law for ε in [0.001, 5] for the fixture JC sets (unit test
+/// `tabular_strains_interpolate_jc_within_one_percent`); below 0.001 the infinite slope of B ε^n at
+/// 0 makes any table miss.
+pub const STANDARD_PLASTIC_STRAINS: [f64; 14] =
+    [0.0, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 3.0, 5.0];
 
 /// Strain rates (1/s) of the DEFORM-style FSTRES table: 1 to 1e6 1/s (fe-cards.md §3).
 pub const STANDARD_FLOW_STRAIN_RATES_PER_S: [f64; 7] = [1.0, 10.0, 100.0, 1e3, 1e4, 1e5, 1e6];

@@ -26,6 +26,16 @@ pub fn default_contact_temperature_c(jc: &JcParams) -> f64 {
     jc.tr_c + 0.5 * (jc.tm_c - jc.tr_c)
 }
 
+/// Homologous temperature of the last flow-stress block of tabular cards, T* = 0.99 (paper Eq 16
+/// defines T*): the JC flow stress there is 1 - 0.99^m (about 1 %) of the cold value.
+pub const NEAR_MELTING_HOMOLOGOUS: f64 = 0.99;
+
+/// The temperature (degC) of T* = [`NEAR_MELTING_HOMOLOGOUS`] of the JC set.
+#[must_use]
+pub fn near_melting_c(jc: &JcParams) -> f64 {
+    jc.tr_c + NEAR_MELTING_HOMOLOGOUS * (jc.tm_c - jc.tr_c)
+}
+
 /// Reference effective strain at which the Eq 17 shear strength k(T) is evaluated from the JC law.
 ///
 /// **Source:** the chip material at the tool-chip interface has passed the primary zone, whose exit
@@ -306,7 +316,13 @@ pub(crate) fn prepare(input: &ExportInput<'_>) -> Result<Prepared, ExportError> 
     }
     let wp = tables(input.workpiece, input)?;
     let tool = input.tool.map(|t| tables(t, input)).transpose()?;
-    let flow_temps_c: Vec<f64> = wp.temps_c.iter().copied().filter(|t| *t < jc.tm_c).collect();
+    let mut flow_temps_c: Vec<f64> = wp.temps_c.iter().copied().filter(|t| *t < jc.tm_c).collect();
+    // A last block near melting, so that the constant extrapolation of tabular cards (Abaqus, DEFORM)
+    // and of the k(T) rows does not keep a hot-but-solid flow stress up to Tm.
+    let near_melting = near_melting_c(&jc);
+    if flow_temps_c.last().is_some_and(|t| *t < near_melting) {
+        flow_temps_c.push(near_melting);
+    }
     if flow_temps_c.is_empty() {
         return Err(ExportError::BadOption {
             field: "temperatures".into(),
@@ -469,6 +485,26 @@ mod tests {
         // (the table: 553 MPa).
         assert!((ks[1] / 1e6 - 552.93).abs() < 0.05, "{}", ks[1] / 1e6);
         assert!(local_shear_strength_pa(&jc, 1460.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn tabular_strains_interpolate_jc_within_one_percent() {
+        // Linear interpolation of A + B eps^n between the standard strains (Abaqus *PLASTIC) against
+        // the law itself, for the fixture JC sets: C38, 42CrMo4, AA6082 (paper Table 5) and AISI 1045
+        // (Jaspers & Dautzenberg 2002), over eps in [0.001, 5].
+        let s = crate::STANDARD_PLASTIC_STRAINS;
+        for (a, b, n) in [(589.0, 145.0, 0.25), (530.0, 153.0, 0.25), (250.0, 61.0, 0.43), (553.1, 600.8, 0.234)] {
+            let law = |e: f64| a + b * f64::powf(e, n);
+            let mut worst: f64 = 0.0;
+            for w in s.windows(2).filter(|w| w[0] >= 0.001) {
+                for i in 1..200 {
+                    let e = w[0] + (w[1] - w[0]) * f64::from(i) / 200.0;
+                    let lin = law(w[0]) + (law(w[1]) - law(w[0])) * (e - w[0]) / (w[1] - w[0]);
+                    worst = worst.max((lin - law(e)).abs() / law(e));
+                }
+            }
+            assert!(worst <= 0.01 && worst > 1e-4, "A {a}: worst {worst}");
+        }
     }
 
     #[test]
