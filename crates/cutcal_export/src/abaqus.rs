@@ -15,7 +15,8 @@ struct MatCtx {
     name: String,
     t_from: f64,
     t_to: f64,
-    density: Vec<[f64; 2]>,
+    /// Density at the room temperature (Abaqus/Explicit uses one density in coupled elements).
+    density: f64,
     elastic: Vec<[f64; 2]>,
     conductivity: Vec<[f64; 2]>,
     specific_heat: Vec<[f64; 2]>,
@@ -86,10 +87,13 @@ fn material(t: &MaterialTables, prefix: &str, f: &crate::units::Factors) -> MatC
         name: format!("{prefix}_{}", t.name.to_ascii_uppercase()),
         t_from: kelvin(t.temps_c[0]),
         t_to: kelvin(*t.temps_c.last().unwrap_or(&t.temps_c[0])),
-        density: rows(&t.density, f.density),
+        density: t.density_room * f.density,
         elastic: t.elastic.map(|(e, nu)| [e * f.stress, nu]).into_iter().collect(),
         conductivity: rows(&t.conductivity, f.conductivity),
-        specific_heat: rows(&t.specific_heat, f.specific_heat),
+        // rho(T) cp(T) / rho0: the volumetric heat capacity of the tables with the constant density
+        // (Abaqus/Explicit ignores a temperature-dependent density in coupled elements; fe-cards.md
+        // §1.5 does the same for LS-DYNA).
+        specific_heat: rows(&t.rho_cp.iter().map(|rc| rc / t.density_room).collect::<Vec<_>>(), f.specific_heat),
     }
 }
 

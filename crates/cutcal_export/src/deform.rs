@@ -38,7 +38,6 @@ struct MRow {
 struct Eq17 {
     m0: f64,
     beta: f64,
-    k: f64,
     rows: Vec<MRow>,
 }
 
@@ -162,8 +161,13 @@ pub(crate) fn render(
             .map(|m| Eq17 {
                 m0: m.m0,
                 beta: m.beta_per_pa * 1e6,
-                k: m.k_pa * 1e-6,
-                rows: m.points.iter().map(|(pr, mu)| MRow { p: pr * 1e-6, m: mu * pr / m.k_pa }).collect(),
+                // m(P) = tau_f / k = m0 (1 - exp(-beta P)) (paper Eq 17 in DEFORM's local-k form).
+                rows: m
+                    .at_contact
+                    .points
+                    .iter()
+                    .map(|(pr, mu)| MRow { p: pr * 1e-6, m: mu * pr / m.at_contact.k_pa })
+                    .collect(),
             })
             .collect(),
         coulomb: p.coulomb_mu.iter().map(|mu| Coulomb { mu: *mu }).collect(),

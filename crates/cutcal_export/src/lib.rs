@@ -21,7 +21,7 @@
 //! ```text
 //! tau_f = m0 (1 - exp(-beta P)) k          (paper Eq 17)
 //! mu(P) = m0 k (1 - exp(-beta P)) / P,  mu(0) = m0 k beta,  cap tau <= m0 k
-//! k     = A / sqrt(3)                      (shear strength of the workpiece, from the JC set)
+//! k(T)  = sigma_JC(2, 1e4 1/s, T) / sqrt(3) (local shear flow stress, paper Eqs 14, 16)
 //! ```
 #![warn(missing_docs)]
 
@@ -42,8 +42,13 @@ pub use error::ExportError;
 pub use units::UnitSystem;
 
 /// Plastic strains of tabular flow-stress cards (Abaqus tabular `*PLASTIC`, DEFORM-style FSTRES):
-/// from 0 to 5, covering primary and secondary shear zones (fe-cards.md §3: ε 0–5).
-pub const STANDARD_PLASTIC_STRAINS: [f64; 10] = [0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0];
+/// from 0 to 5, covering primary and secondary shear zones (fe-cards.md §3: ε 0–5), with
+/// 0.001-0.005 for the steep start of the JC hardening term. Linear interpolation between them stays
+/// within 1 % of the JC law for ε in [0.001, 5] for the fixture JC sets (unit test
+/// `tabular_strains_interpolate_jc_within_one_percent`); below 0.001 the infinite slope of B ε^n at
+/// 0 makes any table miss.
+pub const STANDARD_PLASTIC_STRAINS: [f64; 14] =
+    [0.0, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 3.0, 5.0];
 
 /// Strain rates (1/s) of the DEFORM-style FSTRES table: 1 to 1e6 1/s (fe-cards.md §3).
 pub const STANDARD_FLOW_STRAIN_RATES_PER_S: [f64; 7] = [1.0, 10.0, 100.0, 1e3, 1e4, 1e5, 1e6];
@@ -129,6 +134,24 @@ pub struct ExportOptions {
     pub contact_pressures_pa: Vec<f64>,
     /// Fraction of plastic work converted to heat (Taylor-Quinney; not given in the paper).
     pub inelastic_heat_fraction: f64,
+    /// Tool-chip contact temperature at which the LS-DYNA FS = 2 friction table evaluates the
+    /// Eq 17 shear strength k(T): LS-DYNA's documented FS = 2 table is mu(P, v_rel) with no
+    /// temperature (docs/fe-cards.md). `None`: [`physics::default_contact_temperature_c`], stated
+    /// as a default in the deck.
+    pub contact_temperature: Option<ContactTemperature>,
+    /// Cutting speed (m/s) of the condition the deck is run for: the LS-DYNA termination time is
+    /// the paper's 8 mm cut over it (paper Sec 5.1). `None`: no `*CONTROL_TERMINATION` (stated).
+    pub cutting_speed_m_per_s: Option<f64>,
+}
+
+/// A tool-chip contact temperature and where it comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactTemperature {
+    /// Temperature, degC; must lie in [Tr, Tm) of the JC set.
+    pub temp_c: f64,
+    /// Its source, printed in the deck header (1-60 printable ASCII characters without commas),
+    /// e.g. `"measured interface temperature of test 1"`.
+    pub source: String,
 }
 
 /// Everything one export needs.
@@ -191,7 +214,6 @@ pub(crate) struct HeaderCtx {
     pub source_test: String,
     pub model_variant: String,
     pub units: String,
-    pub k_choice: String,
 }
 
 impl HeaderCtx {
@@ -201,7 +223,6 @@ impl HeaderCtx {
             source_test: input.provenance.source_test.clone(),
             model_variant: input.provenance.model_variant.clone(),
             units: units.to_string(),
-            k_choice: "k = A/sqrt(3) of the exported JC set (von Mises shear yield at the reference state)".into(),
         }
     }
 }

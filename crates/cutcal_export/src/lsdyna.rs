@@ -63,9 +63,18 @@ struct MuRow {
 struct Eq17 {
     m0: f64,
     beta: f64,
+    /// k at the contact temperature, stress unit.
     k: f64,
+    /// The contact temperature, degC and K.
+    tc_c: f64,
+    tc_k: f64,
+    tc_source: String,
     tbid: i64,
     rows: Vec<MuRow>,
+    /// k(T)/k(Tc): the exact temperature factor of Eq 17 (mu(P, T) = mu(P, Tc) k(T)/k(Tc)),
+    /// written as an unreferenced curve (see the header).
+    ratio_lcid: i64,
+    ratio: Vec<[f64; 2]>,
 }
 
 #[derive(Serialize)]
@@ -102,6 +111,47 @@ struct Ctx {
     fwork: f64,
     /// EFMIN, the lower bound of the JC failure strain (LS-DYNA default 1e-6).
     efmin: f64,
+    /// D1 of the JC failure strain with D2..D5 = 0: a failure strain far above any strain of a
+    /// cut, so JC failure is off (no D1-D5 was identified).
+    d1_off: f64,
+    /// Initial temperature of every node: Tr of the JC set, K.
+    t_init_k: f64,
+    /// Initial thermal time step (s, or the time unit), see `initial_thermal_step_s`.
+    its: f64,
+    /// Termination time (time unit), when a cutting speed is given.
+    endtim: Vec<Endtim>,
+}
+
+#[derive(Serialize)]
+struct Endtim {
+    endtim: f64,
+    speed_m_min: f64,
+}
+
+/// Load-curve id of the k(T)/k(Tc) curve.
+const RATIO_LCID: i64 = 400;
+
+/// Failure strain D1 with which JC failure is off: 1e6 is orders of magnitude above the largest
+/// strains of a cut (chip strains of order 1-10; paper Fig 4).
+const FAILURE_OFF_D1: f64 = 1e6;
+
+/// Length of the cut, m (paper Sec 5.1: "an 8-mm cut is considered").
+pub(crate) const CUT_LENGTH_M: f64 = 8e-3;
+
+/// Minimum element size of the paper's mesh, m (paper Sec 5.1: 0.005 mm).
+pub(crate) const MIN_ELEMENT_M: f64 = 5e-6;
+
+/// Initial thermal time step: the diffusion time `h^2 rho cp / (2 k)` of the paper's 5 um element
+/// at the lowest table temperature, so the first
+/// thermal step resolves conduction over one element. LS-DYNA then adapts it (TS = 1).
+///
+/// **Source:** the 1-D explicit conduction limit Fourier number `alpha dt / h^2 = 1/2`
+/// (Incropera & DeWitt, Fundamentals of Heat and Mass Transfer, Sec 5.10), with
+/// `alpha = k / (rho cp)` and h the paper's minimum element size (Sec 5.1).
+fn initial_thermal_step_s(t: &MaterialTables) -> f64 {
+    let k0 = t.conductivity.first().copied().unwrap_or(f64::NAN);
+    let rc0 = t.rho_cp.first().copied().unwrap_or(f64::NAN);
+    MIN_ELEMENT_M * MIN_ELEMENT_M * rc0 / (2.0 * k0)
 }
 
 fn part_mat(t: &MaterialTables, f: &Factors, hclc: i64, who: &str) -> Result<PartMat, ExportError> {
@@ -156,23 +206,34 @@ pub(crate) fn render(
     let eq17: Vec<Eq17> = p
         .mu_table
         .iter()
-        .map(|m| Eq17 {
-            m0: m.m0,
-            beta: m.beta_per_pa / f.stress,
-            k: m.k_pa * f.stress,
-            tbid: TABLE_ID,
-            rows: m
-                .points
-                .iter()
-                .zip(1..)
-                .map(|((pr, mu), i)| MuRow { p: pr * f.stress, mu: *mu, lcid: TABLE_ID + i })
-                .collect(),
+        .map(|m| {
+            let c = &m.at_contact;
+            Eq17 {
+                m0: m.m0,
+                beta: m.beta_per_pa / f.stress,
+                k: c.k_pa * f.stress,
+                tc_c: c.temp_c,
+                tc_k: kelvin(c.temp_c),
+                tc_source: m.contact_source.clone(),
+                tbid: TABLE_ID,
+                rows: c
+                    .points
+                    .iter()
+                    .zip(1..)
+                    .map(|((pr, mu), i)| MuRow { p: pr * f.stress, mu: *mu, lcid: TABLE_ID + i })
+                    .collect(),
+                ratio_lcid: RATIO_LCID,
+                ratio: m.by_temperature.iter().map(|r| [kelvin(r.temp_c), r.k_pa / c.k_pa]).collect(),
+            }
         })
         .collect();
     let contact = match (&p.mu_table, p.coulomb_mu) {
-        (Some(m), _) => {
-            ContactCard { fs: Value::from(2.0), fd: Value::from(TABLE_ID), vc: m.m0 * m.k_pa * f.stress, dt: 1e20 }
-        }
+        (Some(m), _) => ContactCard {
+            fs: Value::from(2.0),
+            fd: Value::from(TABLE_ID),
+            vc: m.m0 * m.at_contact.k_pa * f.stress,
+            dt: 1e20,
+        },
         (None, Some(mu)) => ContactCard { fs: Value::from(mu), fd: Value::from(mu), vc: 0.0, dt: 1e20 },
         (None, None) => {
             return Err(ExportError::Missing { dialect: "lsdyna".into(), what: "a friction law".into() });
@@ -208,6 +269,15 @@ pub(crate) fn render(
         vmax: 1e3 * f.velocity,
         fwork: input.options.inelastic_heat_fraction,
         efmin: 1e-6,
+        d1_off: FAILURE_OFF_D1,
+        t_init_k: kelvin(jc.tr_c),
+        its: ExportError::finite("initial thermal time step", initial_thermal_step_s(&p.wp))?,
+        endtim: input
+            .options
+            .cutting_speed_m_per_s
+            .iter()
+            .map(|v| Endtim { endtim: CUT_LENGTH_M / v, speed_m_min: v * 60.0 })
+            .collect(),
     };
     let value: Value = serde_json::to_value(&ctx)
         .map_err(|e| ExportError::Template { template: "lsdyna".into(), message: e.to_string() })?;

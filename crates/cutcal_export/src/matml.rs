@@ -1,48 +1,84 @@
-//! MatML 3.1 XML (fe-cards.md §4), written with quick-xml.
+//! MatML 3.1 XML in the Ansys Engineering Data form (fe-cards.md §4), written with quick-xml.
 //!
-//! MatML has no notion of a Johnson-Cook law: the JC set is a `PropertyData` named
-//! "Johnson Cook Strength" with the parameter names used by Ansys Engineering Data (fe-cards.md §4,
-//! "confirm against a real Engineering Data export"); temperature tables are comma-separated
-//! `Data` with a Temperature `ParameterValue`. The interface (Eq 17 or Coulomb, heat transfer) is
-//! written as two further named properties of the workpiece. Units are SI with degC.
+//! Layout, as Ansys Engineering Data and `ansys-materials-manager` (its `MatmlWriter`/`MatmlReader`)
+//! write and read it: `EngineeringData` > `Notes`, `Materials` > `MatML_Doc` > `Material`* and
+//! `Metadata`. Every `PropertyData` carries `<Data format="string">-</Data>` and its values in
+//! `ParameterValue`s qualified `Variable Type` = `Dependent` (the property's values) or
+//! `Independent` (the temperatures of a table). Ids are `pr<n>`/`pa<n>` as Ansys numbers them.
+//!
+//! MatML has no notion of a Johnson-Cook law: the JC set is the property "Johnson Cook Strength"
+//! with the parameter names of Ansys' explicit-dynamics model (fe-cards.md §4). Elasticity is the
+//! Ansys "Elasticity" property (Behavior Isotropic: Young's Modulus, Poisson's Ratio). The
+//! interface (paper Sec 5.1) is written as further named properties of the workpiece: the Eq 17
+//! constants, the local shear strength k(T) table, or the Coulomb coefficient, and the heat
+//! transfer coefficient. Units are SI with temperatures in degC.
 
 use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, BytesText, Event};
 use quick_xml::Writer;
 
 use crate::numfmt;
-use crate::physics::{MaterialTables, Prepared};
+use crate::physics::{MaterialTables, Prepared, FRICTION_REFERENCE_STRAIN, FRICTION_REFERENCE_STRAIN_RATE_PER_S};
 use crate::{ExportError, ExportFile, ExportInput};
 
 /// Significant digits of MatML numbers.
 pub(crate) const SIG_MATML: usize = 9;
 
-/// (id, name, unit or None for unitless) of every parameter.
-const PARAMETERS: &[(&str, &str, Option<&str>)] = &[
-    ("pa_temperature", "Temperature", Some("C")),
-    ("pa_jc_a", "Initial Yield Stress", Some("Pa")),
-    ("pa_jc_b", "Hardening Constant", Some("Pa")),
-    ("pa_jc_n", "Hardening Exponent", None),
-    ("pa_jc_c", "Strain Rate Constant", None),
-    ("pa_jc_m", "Thermal Softening Exponent", None),
-    ("pa_jc_tm", "Melting Temperature", Some("C")),
-    ("pa_jc_tr", "Reference Temperature", Some("C")),
-    ("pa_jc_eps0", "Reference Strain Rate (/sec)", Some("1/s")),
-    ("pa_eq17_m0", "Friction Factor m0", None),
-    ("pa_eq17_beta", "Pressure Coefficient beta", Some("1/Pa")),
-    ("pa_eq17_k", "Shear Strength k", Some("Pa")),
-    ("pa_mu", "Coulomb Friction Coefficient", None),
+/// A unit as Ansys writes it: (name, power) factors; empty = unitless.
+type Unit = &'static [(&'static str, i32)];
+
+/// (key, name, unit) of every parameter; the id is `pa<index>`.
+const PARAMETERS: &[(&str, &str, Unit)] = &[
+    ("temperature", "Temperature", &[("C", 1)]),
+    ("density", "Density", &[("kg", 1), ("m", -3)]),
+    ("cp", "Specific Heat", &[("J", 1), ("kg", -1), ("C", -1)]),
+    ("k", "Thermal Conductivity", &[("W", 1), ("m", -1), ("C", -1)]),
+    ("youngs", "Young's Modulus", &[("Pa", 1)]),
+    ("poisson", "Poisson's Ratio", &[]),
+    ("jc_a", "Initial Yield Stress", &[("Pa", 1)]),
+    ("jc_b", "Hardening Constant", &[("Pa", 1)]),
+    ("jc_n", "Hardening Exponent", &[]),
+    ("jc_c", "Strain Rate Constant", &[]),
+    ("jc_m", "Thermal Softening Exponent", &[]),
+    ("jc_tm", "Melting Temperature", &[("C", 1)]),
+    ("jc_tr", "Reference Temperature", &[("C", 1)]),
+    ("jc_eps0", "Reference Strain Rate (/sec)", &[("s", -1)]),
+    ("eq17_m0", "Friction Factor m0", &[]),
+    ("eq17_beta", "Pressure Coefficient beta", &[("Pa", -1)]),
+    ("eq17_k", "Local Shear Strength k", &[("Pa", 1)]),
+    ("mu", "Coulomb Friction Coefficient", &[]),
+    ("htc", "Heat Transfer Coefficient", &[("W", 1), ("m", -2), ("C", -1)]),
 ];
 
-/// (id, name, unit or None) of every property.
-const PROPERTIES: &[(&str, &str, Option<&str>)] = &[
-    ("pr_jc", "Johnson Cook Strength", None),
-    ("pr_density", "Density", Some("kg m^-3")),
-    ("pr_cp", "Specific Heat", Some("J kg^-1 C^-1")),
-    ("pr_k", "Thermal Conductivity", Some("W m^-1 C^-1")),
-    ("pr_friction_eq17", "Pressure-Dependent Shear Friction (paper Eq 17)", None),
-    ("pr_friction_coulomb", "Coulomb Friction", None),
-    ("pr_htc", "Interface Heat Transfer Coefficient", Some("W m^-2 C^-1")),
+/// (key, name) of every property; the id is `pr<index>`. Properties carry no unit (Ansys writes
+/// `Unitless`; the units are those of the parameters).
+const PROPERTIES: &[(&str, &str)] = &[
+    ("jc", "Johnson Cook Strength"),
+    ("density", "Density"),
+    ("cp", "Specific Heat"),
+    ("k", "Thermal Conductivity"),
+    ("elasticity", "Elasticity"),
+    ("eq17", "Pressure-Dependent Shear Friction (paper Eq 17)"),
+    ("eq17_k", "Eq 17 Local Shear Strength"),
+    ("coulomb", "Coulomb Friction"),
+    ("htc", "Interface Heat Transfer"),
 ];
+
+fn id_of(list: &[&str], prefix: &str, key: &str) -> Result<String, ExportError> {
+    list.iter()
+        .position(|k| *k == key)
+        .map(|i| format!("{prefix}{i}"))
+        .ok_or_else(|| ExportError::Xml(format!("unknown MatML key {key}")))
+}
+
+fn pa(key: &str) -> Result<String, ExportError> {
+    let keys: Vec<&str> = PARAMETERS.iter().map(|p| p.0).collect();
+    id_of(&keys, "pa", key)
+}
+
+fn pr(key: &str) -> Result<String, ExportError> {
+    let keys: Vec<&str> = PROPERTIES.iter().map(|p| p.0).collect();
+    id_of(&keys, "pr", key)
+}
 
 type W = Writer<Vec<u8>>;
 
@@ -55,7 +91,7 @@ fn num(field: &str, v: f64) -> Result<String, ExportError> {
 }
 
 fn list(field: &str, v: &[f64]) -> Result<String, ExportError> {
-    Ok(v.iter().map(|x| num(field, *x)).collect::<Result<Vec<_>, _>>()?.join(","))
+    Ok(v.iter().map(|x| num(field, *x)).collect::<Result<Vec<_>, _>>()?.join(", "))
 }
 
 fn start(w: &mut W, name: &str, attrs: &[(&str, &str)]) -> Result<(), ExportError> {
@@ -76,140 +112,171 @@ fn text_el(w: &mut W, name: &str, attrs: &[(&str, &str)], text: &str) -> Result<
     end(w, name)
 }
 
-fn scalar_param(w: &mut W, id: &str, value: f64) -> Result<(), ExportError> {
-    start(w, "ParameterValue", &[("parameter", id), ("format", "float")])?;
-    text_el(w, "Data", &[("format", "float")], &num(id, value)?)?;
+/// One `ParameterValue`: comma-separated values with one Variable Type qualifier per value.
+fn parameter(w: &mut W, key: &str, values: &[f64], independent: bool) -> Result<(), ExportError> {
+    let kind = if independent { "Independent" } else { "Dependent" };
+    start(w, "ParameterValue", &[("parameter", &pa(key)?), ("format", "float")])?;
+    text_el(w, "Data", &[], &list(key, values)?)?;
+    text_el(w, "Qualifier", &[("name", "Variable Type")], &vec![kind; values.len()].join(","))?;
     end(w, "ParameterValue")
 }
 
-/// A property with named scalar parameters (the JC set, friction).
-fn scalar_property(w: &mut W, property: &str, params: &[(&str, f64)]) -> Result<(), ExportError> {
-    start(w, "PropertyData", &[("property", property)])?;
+/// A property with constant parameters (the JC set, elasticity, friction constants).
+fn constant_property(
+    w: &mut W,
+    property: &str,
+    qualifiers: &[(&str, &str)],
+    params: &[(&str, f64)],
+) -> Result<(), ExportError> {
+    start(w, "PropertyData", &[("property", &pr(property)?)])?;
     text_el(w, "Data", &[("format", "string")], "-")?;
-    for (id, v) in params {
-        scalar_param(w, id, *v)?;
+    for (name, value) in qualifiers {
+        text_el(w, "Qualifier", &[("name", name)], value)?;
+    }
+    for (key, v) in params {
+        parameter(w, key, &[*v], false)?;
     }
     end(w, "PropertyData")
 }
 
-/// A property tabulated against temperature (Ansys Engineering Data convention: Variable Type
-/// qualifiers mark the dependent and independent columns).
-fn table_property(w: &mut W, property: &str, temps_c: &[f64], values: &[f64]) -> Result<(), ExportError> {
-    let dep = vec!["Dependent"; values.len()].join(",");
-    let ind = vec!["Independent"; temps_c.len()].join(",");
-    start(w, "PropertyData", &[("property", property)])?;
-    text_el(w, "Data", &[("format", "float")], &list(property, values)?)?;
-    text_el(w, "Qualifier", &[("name", "Variable Type")], &dep)?;
-    start(w, "ParameterValue", &[("parameter", "pa_temperature"), ("format", "float")])?;
-    text_el(w, "Data", &[("format", "float")], &list("temperature", temps_c)?)?;
-    text_el(w, "Qualifier", &[("name", "Variable Type")], &ind)?;
-    end(w, "ParameterValue")?;
+/// A property tabulated against temperature.
+fn table_property(
+    w: &mut W,
+    property: &str,
+    qualifiers: &[(&str, &str)],
+    key: &str,
+    temps_c: &[f64],
+    values: &[f64],
+) -> Result<(), ExportError> {
+    start(w, "PropertyData", &[("property", &pr(property)?)])?;
+    text_el(w, "Data", &[("format", "string")], "-")?;
+    for (name, value) in qualifiers {
+        text_el(w, "Qualifier", &[("name", name)], value)?;
+    }
+    parameter(w, key, values, false)?;
+    parameter(w, "temperature", temps_c, true)?;
     end(w, "PropertyData")
 }
 
-fn details(w: &mut W, element: &str, id: &str, name: &str, unit: Option<&str>) -> Result<(), ExportError> {
+fn details(w: &mut W, element: &str, id: &str, name: &str, unit: Unit) -> Result<(), ExportError> {
     start(w, element, &[("id", id)])?;
     text_el(w, "Name", &[], name)?;
-    match unit {
-        Some(u) => {
-            start(w, "Units", &[])?;
-            start(w, "Unit", &[])?;
+    if unit.is_empty() {
+        w.write_event(Event::Empty(BytesStart::new("Unitless"))).map_err(xml_err)?;
+    } else {
+        start(w, "Units", &[])?;
+        for (u, power) in unit {
+            if *power == 1 {
+                start(w, "Unit", &[])?;
+            } else {
+                start(w, "Unit", &[("power", &power.to_string())])?;
+            }
             text_el(w, "Name", &[], u)?;
             end(w, "Unit")?;
-            end(w, "Units")?;
         }
-        None => w.write_event(Event::Empty(BytesStart::new("Unitless"))).map_err(xml_err)?,
+        end(w, "Units")?;
     }
     end(w, element)
 }
 
-fn thermal(w: &mut W, t: &MaterialTables) -> Result<(), ExportError> {
-    table_property(w, "pr_density", &t.temps_c, &t.density)?;
-    table_property(w, "pr_cp", &t.temps_c, &t.specific_heat)?;
-    table_property(w, "pr_k", &t.temps_c, &t.conductivity)
+/// Density, specific heat, conductivity and elasticity of one material.
+fn bulk(w: &mut W, t: &MaterialTables) -> Result<(), ExportError> {
+    table_property(w, "density", &[], "density", &t.temps_c, &t.density)?;
+    table_property(w, "cp", &[("Definition", "Constant Pressure")], "cp", &t.temps_c, &t.specific_heat)?;
+    table_property(w, "k", &[("Behavior", "Isotropic")], "k", &t.temps_c, &t.conductivity)?;
+    if let Some((e, nu)) = t.elastic {
+        constant_property(w, "elasticity", &[("Behavior", "Isotropic")], &[("youngs", e), ("poisson", nu)])?;
+    }
+    Ok(())
+}
+
+fn open_material(w: &mut W, name: &str, class: &str) -> Result<(), ExportError> {
+    start(w, "Material", &[])?;
+    start(w, "BulkDetails", &[])?;
+    text_el(w, "Name", &[], name)?;
+    start(w, "Class", &[])?;
+    text_el(w, "Name", &[], class)?;
+    end(w, "Class")
 }
 
 pub(crate) fn render(p: &Prepared, input: &ExportInput<'_>) -> Result<Vec<ExportFile>, ExportError> {
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None))).map_err(xml_err)?;
     let prov = input.provenance;
-    let header = format!(
-        " cutcal {}: MatML 3.1 export | source test: {} | model variant: {} | units: SI (Pa, kg, m, s, J, W) with \
-         temperatures in degC | JC (paper Eq 16) as the named property Johnson Cook Strength; thermal tables \
-         sample the paper Table 3 polynomials | interface: paper Sec 5.1; k = A/sqrt(3) of the JC set ",
-        prov.cutcal_version, prov.source_test, prov.model_variant
+    let notes = format!(
+        "cutcal {}: Ansys Engineering Data (MatML 3.1) export. Source test: {}. Model variant: {}. Units: SI \
+         (Pa, kg, m, s, J, W) with temperatures in degC. JC (paper Eq 16) as the property Johnson Cook \
+         Strength; thermal tables sample the paper Table 3 polynomials; elastic constants from the material \
+         file. Interface: paper Sec 5.1; Eq 17 tau_f = m0 (1 - exp(-beta P)) k(T) with k(T) = \
+         sigma_JC({}, {} 1/s, T)/sqrt(3), the local shear flow stress (Eqs 14, 16), tabulated below Tm.",
+        prov.cutcal_version,
+        prov.source_test,
+        prov.model_variant,
+        FRICTION_REFERENCE_STRAIN,
+        FRICTION_REFERENCE_STRAIN_RATE_PER_S
     );
-    // A comment must not contain "--"; nothing in it needs escaping.
-    let header = header.replace("--", "- -");
-    w.write_event(Event::Comment(BytesText::from_escaped(header))).map_err(xml_err)?;
+    // The version attributes are those of the Engineering Data format that ansys-materials-manager
+    // writes and reads (its MatmlWriter: 18.0.0.60).
+    start(&mut w, "EngineeringData", &[("version", "18.0.0.60"), ("versiondate", "29.08.2016 15:02:00")])?;
+    text_el(&mut w, "Notes", &[], &notes)?;
+    start(&mut w, "Materials", &[])?;
     start(&mut w, "MatML_Doc", &[])?;
 
-    start(&mut w, "Material", &[("id", "workpiece")])?;
-    start(&mut w, "BulkDetails", &[])?;
-    text_el(&mut w, "Name", &[], &p.wp.name)?;
-    start(&mut w, "Class", &[])?;
-    text_el(&mut w, "Name", &[], "workpiece")?;
-    end(&mut w, "Class")?;
+    open_material(&mut w, &p.wp.name, "workpiece")?;
     let jc = &p.jc;
-    scalar_property(
+    constant_property(
         &mut w,
-        "pr_jc",
+        "jc",
+        &[],
         &[
-            ("pa_jc_a", jc.a_pa),
-            ("pa_jc_b", jc.b_pa),
-            ("pa_jc_n", jc.n),
-            ("pa_jc_c", jc.c),
-            ("pa_jc_m", jc.m),
-            ("pa_jc_tm", jc.tm_c),
-            ("pa_jc_tr", jc.tr_c),
-            ("pa_jc_eps0", jc.eps0_per_s),
+            ("jc_a", jc.a_pa),
+            ("jc_b", jc.b_pa),
+            ("jc_n", jc.n),
+            ("jc_c", jc.c),
+            ("jc_m", jc.m),
+            ("jc_tm", jc.tm_c),
+            ("jc_tr", jc.tr_c),
+            ("jc_eps0", jc.eps0_per_s),
         ],
     )?;
-    thermal(&mut w, &p.wp)?;
+    bulk(&mut w, &p.wp)?;
     if let Some(m) = &p.mu_table {
-        scalar_property(
-            &mut w,
-            "pr_friction_eq17",
-            &[("pa_eq17_m0", m.m0), ("pa_eq17_beta", m.beta_per_pa), ("pa_eq17_k", m.k_pa)],
-        )?;
+        constant_property(&mut w, "eq17", &[], &[("eq17_m0", m.m0), ("eq17_beta", m.beta_per_pa)])?;
+        let temps: Vec<f64> = m.by_temperature.iter().map(|r| r.temp_c).collect();
+        let ks: Vec<f64> = m.by_temperature.iter().map(|r| r.k_pa).collect();
+        table_property(&mut w, "eq17_k", &[], "eq17_k", &temps, &ks)?;
     }
     if let Some(mu) = p.coulomb_mu {
-        scalar_property(&mut w, "pr_friction_coulomb", &[("pa_mu", mu)])?;
+        constant_property(&mut w, "coulomb", &[], &[("mu", mu)])?;
     }
-    start(&mut w, "PropertyData", &[("property", "pr_htc")])?;
-    text_el(&mut w, "Data", &[("format", "float")], &num("heat transfer", p.htc)?)?;
-    end(&mut w, "PropertyData")?;
+    constant_property(&mut w, "htc", &[], &[("htc", p.htc)])?;
     text_el(
         &mut w,
         "Notes",
         &[],
-        "Friction and heat transfer describe the tool-chip interface (paper Sec 5.1). Eq 17: tau_f = m0 (1 - \
-         exp(-beta P)) k; k = A/sqrt(3) of the JC set.",
+        "Friction and heat transfer describe the tool-chip interface (paper Sec 5.1), not the bulk material.",
     )?;
     end(&mut w, "BulkDetails")?;
     end(&mut w, "Material")?;
 
     if let Some(t) = &p.tool {
-        start(&mut w, "Material", &[("id", "tool")])?;
-        start(&mut w, "BulkDetails", &[])?;
-        text_el(&mut w, "Name", &[], &t.name)?;
-        start(&mut w, "Class", &[])?;
-        text_el(&mut w, "Name", &[], "tool")?;
-        end(&mut w, "Class")?;
-        thermal(&mut w, t)?;
+        open_material(&mut w, &t.name, "tool")?;
+        bulk(&mut w, t)?;
         end(&mut w, "BulkDetails")?;
         end(&mut w, "Material")?;
     }
 
     start(&mut w, "Metadata", &[])?;
-    for (id, name, unit) in PARAMETERS {
-        details(&mut w, "ParameterDetails", id, name, *unit)?;
+    for (i, (_, name, unit)) in PARAMETERS.iter().enumerate() {
+        details(&mut w, "ParameterDetails", &format!("pa{i}"), name, unit)?;
     }
-    for (id, name, unit) in PROPERTIES {
-        details(&mut w, "PropertyDetails", id, name, *unit)?;
+    for (i, (_, name)) in PROPERTIES.iter().enumerate() {
+        details(&mut w, "PropertyDetails", &format!("pr{i}"), name, &[])?;
     }
     end(&mut w, "Metadata")?;
     end(&mut w, "MatML_Doc")?;
+    end(&mut w, "Materials")?;
+    end(&mut w, "EngineeringData")?;
     let mut bytes = w.into_inner();
     bytes.push(b'\n');
     let contents = String::from_utf8(bytes).map_err(xml_err)?;

@@ -8,24 +8,32 @@ use cutcal_model::{Friction, JcParams, Material};
 
 use crate::{ExportError, ExportInput};
 
-/// Shear strength k of the workpiece used by the Eq 17 cards: `k = A / sqrt(3)` (von Mises) of
-/// the exported JC set, in Pa.
-///
-/// **Source:** paper Eq 17 needs "k, the shear strength of the workpiece"; FE codes that take a
-/// friction table cannot feed the local flow stress into mu, so a representative constant is
-/// needed (fe-cards.md §1.6). We take the JC yield stress A (the initial flow stress at the
-/// reference rate and temperature) over sqrt(3); this choice is stated in every card header.
+/// Default tool-chip contact temperature (degC) for the dialects that need one constant k
+/// (the LS-DYNA FS = 2 table): the homologous temperature `T* = (T - Tr)/(Tm - Tr) = 0.5` of the
+/// JC set. **This is a stated default, not a measured or predicted value**: give the interface
+/// temperature of the cutting condition (a measurement, or the extended Oxley prediction of
+/// `cutcal predict`) when it is known. Paper Eq 16 defines T*; the value 0.5 is ours.
 ///
 /// # Example
 /// ```
 /// use cutcal_model::JcParams;
-/// // Paper Table 5, C38: A = 589 MPa -> k = 340.06 MPa.
+/// // C38 Table 5 set: Tr = 20, Tm = 1460 degC -> 740 degC.
 /// let jc = JcParams::new(589e6, 145e6, 0.25, 0.069, 1.1, 1.0, 1460.0, 20.0).unwrap();
-/// assert!((cutcal_export::physics::shear_strength_pa(&jc) / 1e6 - 340.0589).abs() < 1e-3);
+/// assert!((cutcal_export::physics::default_contact_temperature_c(&jc) - 740.0).abs() < 1e-9);
 /// ```
 #[must_use]
-pub fn shear_strength_pa(jc: &JcParams) -> f64 {
-    jc.a_pa / 3f64.sqrt()
+pub fn default_contact_temperature_c(jc: &JcParams) -> f64 {
+    jc.tr_c + 0.5 * (jc.tm_c - jc.tr_c)
+}
+
+/// Homologous temperature of the last flow-stress block of tabular cards, T* = 0.99 (paper Eq 16
+/// defines T*): the JC flow stress there is 1 - 0.99^m (about 1 %) of the cold value.
+pub const NEAR_MELTING_HOMOLOGOUS: f64 = 0.99;
+
+/// The temperature (degC) of T* = [`NEAR_MELTING_HOMOLOGOUS`] of the JC set.
+#[must_use]
+pub fn near_melting_c(jc: &JcParams) -> f64 {
+    jc.tr_c + NEAR_MELTING_HOMOLOGOUS * (jc.tm_c - jc.tr_c)
 }
 
 /// Reference effective strain at which the Eq 17 shear strength k(T) is evaluated from the JC law.
@@ -115,10 +123,11 @@ pub(crate) struct MaterialTables {
 pub(crate) struct MuTable {
     pub m0: f64,
     pub beta_per_pa: f64,
-    /// The constant k = A/sqrt(3) used by the dialects that cannot take a temperature-dependent
-    /// friction table (LS-DYNA FS = 2 table, MatML parameters), Pa.
-    pub k_pa: f64,
-    pub points: Vec<(f64, f64)>,
+    /// The rows at the one contact temperature of [`crate::ExportOptions::contact_temperature_c`],
+    /// for the dialect that cannot take a temperature-dependent table (LS-DYNA FS = 2).
+    pub at_contact: MuRowsAtT,
+    /// Where the contact temperature of `at_contact` comes from.
+    pub contact_source: String,
     /// The temperature-dependent law: per contact temperature (degC, below Tm) the local k(T) (Pa)
     /// and the (P, mu) rows with that k.
     pub by_temperature: Vec<MuRowsAtT>,
@@ -307,7 +316,13 @@ pub(crate) fn prepare(input: &ExportInput<'_>) -> Result<Prepared, ExportError> 
     }
     let wp = tables(input.workpiece, input)?;
     let tool = input.tool.map(|t| tables(t, input)).transpose()?;
-    let flow_temps_c: Vec<f64> = wp.temps_c.iter().copied().filter(|t| *t < jc.tm_c).collect();
+    let mut flow_temps_c: Vec<f64> = wp.temps_c.iter().copied().filter(|t| *t < jc.tm_c).collect();
+    // A last block near melting, so that the constant extrapolation of tabular cards (Abaqus, DEFORM)
+    // and of the k(T) rows does not keep a hot-but-solid flow stress up to Tm.
+    let near_melting = near_melting_c(&jc);
+    if flow_temps_c.last().is_some_and(|t| *t < near_melting) {
+        flow_temps_c.push(near_melting);
+    }
     if flow_temps_c.is_empty() {
         return Err(ExportError::BadOption {
             field: "temperatures".into(),
@@ -321,28 +336,59 @@ pub(crate) fn prepare(input: &ExportInput<'_>) -> Result<Prepared, ExportError> 
     if !(htc.is_finite() && htc > 0.0) {
         return Err(ExportError::NonFinite { field: "heat_transfer_w_per_m2_k".into(), value: htc });
     }
-    let k_pa = ExportError::finite("shear strength k", shear_strength_pa(&jc))?;
+    let (tc, tc_source) = match &o.contact_temperature {
+        Some(c) => (c.temp_c, c.source.clone()),
+        None => (default_contact_temperature_c(&jc), "default T* = 0.5 (no interface temperature given)".to_string()),
+    };
+    if !(tc.is_finite() && tc >= jc.tr_c && tc < jc.tm_c) {
+        return Err(ExportError::BadOption {
+            field: "contact_temperature_c".into(),
+            value: tc.to_string(),
+            expected: format!("a contact temperature in [Tr, Tm) = [{}, {}) degC of the JC set", jc.tr_c, jc.tm_c),
+        });
+    }
+    check_label(&tc_source).map_err(|e| match e {
+        ExportError::BadName { name, reason } => {
+            ExportError::BadName { name, reason: format!("contact_temperature_source: {reason}") }
+        }
+        other => other,
+    })?;
+    if let Some(v) = o.cutting_speed_m_per_s {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(ExportError::BadOption {
+                field: "cutting_speed_m_per_s".into(),
+                value: v.to_string(),
+                expected: "a positive cutting speed".into(),
+            });
+        }
+    }
     let (mu_table, coulomb_mu) = match iface.friction {
         Friction::PressureDependentShear { m0, beta_per_pa } => {
-            let points = o
-                .contact_pressures_pa
-                .iter()
-                .map(|&p| Ok((p, ExportError::finite("mu(P)", eq17_mu(m0, beta_per_pa, k_pa, p))?)))
-                .collect::<Result<Vec<_>, ExportError>>()?;
-            let mut by_temperature = Vec::new();
-            for &t in &flow_temps_c {
+            let rows_at = |t: f64| -> Result<MuRowsAtT, ExportError> {
                 let k_t = ExportError::finite("local shear strength k(T)", local_shear_strength_pa(&jc, t))?;
-                if k_t <= 0.0 {
-                    continue;
-                }
-                let pts = o
+                let points = o
                     .contact_pressures_pa
                     .iter()
                     .map(|&p| Ok((p, ExportError::finite("mu(P, T)", eq17_mu(m0, beta_per_pa, k_t, p))?)))
                     .collect::<Result<Vec<_>, ExportError>>()?;
-                by_temperature.push(MuRowsAtT { temp_c: t, k_pa: k_t, points: pts });
+                Ok(MuRowsAtT { temp_c: t, k_pa: k_t, points })
+            };
+            let mut by_temperature = Vec::new();
+            for &t in &flow_temps_c {
+                let rows = rows_at(t)?;
+                if rows.k_pa > 0.0 {
+                    by_temperature.push(rows);
+                }
             }
-            (Some(MuTable { m0, beta_per_pa, k_pa, points, by_temperature }), None)
+            let at_contact = rows_at(tc)?;
+            if at_contact.k_pa <= 0.0 {
+                return Err(ExportError::BadOption {
+                    field: "contact_temperature_c".into(),
+                    value: tc.to_string(),
+                    expected: "a temperature where the JC shear strength k(T) is positive".into(),
+                });
+            }
+            (Some(MuTable { m0, beta_per_pa, at_contact, contact_source: tc_source, by_temperature }), None)
         }
         Friction::Coulomb { mu } => (None, Some(mu)),
     };
@@ -439,6 +485,26 @@ mod tests {
         // (the issue's table: 553 MPa).
         assert!((ks[1] / 1e6 - 552.93).abs() < 0.05, "{}", ks[1] / 1e6);
         assert!(local_shear_strength_pa(&jc, 1460.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn tabular_strains_interpolate_jc_within_one_percent() {
+        // Linear interpolation of A + B eps^n between the standard strains (Abaqus *PLASTIC) against
+        // the law itself, for the fixture JC sets: C38, 42CrMo4, AA6082 (paper Table 5) and AISI 1045
+        // (Jaspers & Dautzenberg 2002), over eps in [0.001, 5].
+        let s = crate::STANDARD_PLASTIC_STRAINS;
+        for (a, b, n) in [(589.0, 145.0, 0.25), (530.0, 153.0, 0.25), (250.0, 61.0, 0.43), (553.1, 600.8, 0.234)] {
+            let law = |e: f64| a + b * f64::powf(e, n);
+            let mut worst: f64 = 0.0;
+            for w in s.windows(2).filter(|w| w[0] >= 0.001) {
+                for i in 1..200 {
+                    let e = w[0] + (w[1] - w[0]) * f64::from(i) / 200.0;
+                    let lin = law(w[0]) + (law(w[1]) - law(w[0])) * (e - w[0]) / (w[1] - w[0]);
+                    worst = worst.max((lin - law(e)).abs() / law(e));
+                }
+            }
+            assert!(worst <= 0.01 && worst > 1e-4, "A {a}: worst {worst}");
+        }
     }
 
     #[test]

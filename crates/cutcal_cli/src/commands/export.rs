@@ -9,8 +9,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use cutcal_export::{
-    render, render_all, Dialect, ExportFile, ExportInput, ExportOptions, Provenance, TemperatureGrid, UnitSystem,
-    STANDARD_CONTACT_PRESSURES_MPA, STANDARD_FLOW_STRAIN_RATES_PER_S, STANDARD_PLASTIC_STRAINS,
+    render, render_all, ContactTemperature, Dialect, ExportFile, ExportInput, ExportOptions, Provenance,
+    TemperatureGrid, UnitSystem, STANDARD_CONTACT_PRESSURES_MPA, STANDARD_FLOW_STRAIN_RATES_PER_S,
+    STANDARD_PLASTIC_STRAINS,
 };
 
 use crate::input::jc_file::load_jc;
@@ -82,6 +83,16 @@ pub struct ExportArgs {
     /// Model variant named in the headers.
     #[arg(long, default_value = "as identified in the JC file")]
     pub model_variant: String,
+    /// Tool-chip contact temperature, degC, at which the LS-DYNA FS = 2 friction table evaluates
+    /// k(T) (LS-DYNA cannot take k(T) there; docs/fe-cards.md). Default: the homologous
+    /// temperature 0.5 of the JC set, stated in the deck. A measured interface temperature or the
+    /// extended Oxley prediction (`cutcal predict`) is better.
+    #[arg(long)]
+    pub contact_temperature_c: Option<f64>,
+    /// Cutting speed, m/min: the LS-DYNA deck then gets *CONTROL_TERMINATION for the paper's 8 mm
+    /// cut (Sec 5.1). Without it no termination card is written (stated in the deck).
+    #[arg(long)]
+    pub cutting_speed_m_min: Option<f64>,
 }
 
 /// The interface section of a workpiece file, or a located error.
@@ -111,7 +122,8 @@ pub fn load_tool(wp_file: &MaterialFile) -> Result<Option<Material>> {
 }
 
 /// The default export options of a workpiece: its thermal range every 100 K, the standard strain
-/// and pressure grids, 1e4 1/s for the tabular card, heat fraction 0.9.
+/// and pressure grids, 1e4 1/s for the tabular card, heat fraction 0.9, the default contact
+/// temperature (homologous 0.5, stated in the deck) and no cutting speed (no termination card).
 #[must_use]
 pub fn standard_options(wp: &Material) -> ExportOptions {
     ExportOptions {
@@ -122,6 +134,8 @@ pub fn standard_options(wp: &Material) -> ExportOptions {
         flow_strain_rates_per_s: STANDARD_FLOW_STRAIN_RATES_PER_S.to_vec(),
         contact_pressures_pa: STANDARD_CONTACT_PRESSURES_MPA.iter().map(|p| p * 1e6).collect(),
         inelastic_heat_fraction: 0.9,
+        contact_temperature: None,
+        cutting_speed_m_per_s: None,
     }
 }
 
@@ -167,6 +181,10 @@ pub fn run(args: &ExportArgs) -> Result<()> {
     let options = ExportOptions {
         tabular_strain_rate_per_s: args.strain_rate,
         inelastic_heat_fraction: args.heat_fraction,
+        contact_temperature: args
+            .contact_temperature_c
+            .map(|t| ContactTemperature { temp_c: t, source: "given by --contact-temperature-c".into() }),
+        cutting_speed_m_per_s: args.cutting_speed_m_min.map(|v| v / 60.0),
         ..options
     };
     let jc_name = args.jc.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
@@ -234,6 +252,8 @@ mod tests {
             heat_fraction: 0.9,
             source_test: None,
             model_variant: "enhanced DPZD".into(),
+            contact_temperature_c: None,
+            cutting_speed_m_min: None,
         }
     }
 
@@ -273,5 +293,25 @@ mod tests {
         let err = run(&a).unwrap_err();
         assert!(format!("{err:#}").contains("temperatures"), "{err:#}");
         assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none());
+    }
+
+    #[test]
+    fn contact_temperature_and_speed_reach_the_lsdyna_deck() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut a = args("fixtures/materials/c38.toml", "fixtures/jc/c38_table5.toml", dir.path());
+        a.format = FormatChoice::Lsdyna;
+        a.contact_temperature_c = Some(600.0);
+        a.cutting_speed_m_min = Some(180.0);
+        run(&a).unwrap();
+        let deck = std::fs::read_to_string(dir.path().join("c38_lsdyna.k")).unwrap();
+        // k(600 degC) of the C38 Table 5 set at eps = 2, epsdot = 1e4 1/s: 454.5733 MPa (python:
+        // (589+145*2**0.25)*(1+0.069*math.log(1e4))*(1-(580/1440)**1.1)/3**0.5); VC = m0 k, m0 = 1.
+        assert!(deck.contains("Tc = 600. degC") && deck.contains("   454.573 "), "{deck}");
+        // ENDTIM = 8 mm / (180 m/min) = 8e-3 / 3 s.
+        assert!(deck.contains("*CONTROL_TERMINATION") && deck.contains("ENDTIM = 0.002666667"), "{deck}");
+
+        a.contact_temperature_c = Some(1500.0);
+        let err = run(&a).unwrap_err();
+        assert!(format!("{err:#}").contains("contact_temperature_c"), "{err:#}");
     }
 }

@@ -114,6 +114,32 @@ pub fn cases() -> Vec<Case> {
     ]
 }
 
+/// AISI 1045 of fixtures/materials/aisi1045.toml (Lalwani et al. 2009 thermal data, typical
+/// elastic constants) with the Jaspers & Dautzenberg 2002 JC set of fixtures/jc/aisi1045_jaspers2002.toml
+/// and the fixture's interface (Coulomb mu = 0.583, H13A tool, paper Sec 5.1 heat transfer).
+pub fn aisi1045() -> Case {
+    Case {
+        key: "aisi1045",
+        workpiece: Material {
+            name: "AISI1045".into(),
+            thermal: ThermalProperties {
+                rho_cp: poly(&[7862.0], 1.0).product(&poly(&[420.0, 0.504], 1.0)),
+                density: poly(&[7862.0], 1.0),
+                conductivity: poly(&[52.61, -0.0281], 1.0),
+                valid_from_c: 0.0,
+                valid_to_c: 1400.0,
+            },
+            yield_strength: None,
+            melting_c: 1460.0,
+            room_c: 25.0,
+            elastic: Some(Elastic { youngs_pa: 205e9, poisson: 0.29 }),
+        },
+        jc: JcParams::new(553.1e6, 600.8e6, 0.234, 0.0134, 1.0, 1.0, 1460.0, 25.0).unwrap(),
+        tool: h13a(),
+        interface: Interface { friction: Friction::Coulomb { mu: 0.583 }, heat_transfer_w_per_m2_k: HTC },
+    }
+}
+
 /// Reads a Table 5 JC fixture (`fixtures/jc/<key>_table5.toml`) with a minimal `key = value` reader,
 /// so the tests follow the fixture rather than a copy of it.
 pub fn jc_file(key: &str) -> JcParams {
@@ -150,6 +176,8 @@ pub fn options() -> ExportOptions {
         flow_strain_rates_per_s: STANDARD_FLOW_STRAIN_RATES_PER_S.to_vec(),
         contact_pressures_pa: STANDARD_CONTACT_PRESSURES_MPA.iter().map(|p| p * 1e6).collect(),
         inelastic_heat_fraction: 0.9,
+        contact_temperature: None,
+        cutting_speed_m_per_s: None,
     }
 }
 

@@ -2,7 +2,7 @@
 //! database; fe-cards.md §5.1b) reads every exported deck: keyword classes, JC and thermal
 //! values, contact fields, EOS link and table-curve order (fe-cards.md §6 pitfalls 1-5).
 
-use cutcal_export::physics::{eq17_mu, shear_strength_pa};
+use cutcal_export::physics::eq17_mu;
 use cutcal_export::{render, Dialect};
 use cutcal_model::Friction;
 use dynars::deck::parse_deck;
@@ -21,9 +21,16 @@ const EXPECTED_SCHEMA: &[&str] = &[
     "DEFINE_CURVE",
     "CONTACT_SURFACE_TO_SURFACE_THERMAL_FRICTION",
     "DEFINE_TABLE",
+    "HOURGLASS",
+    "INITIAL_TEMPERATURE_SET",
     "CONTROL_SOLUTION",
     "CONTROL_THERMAL_SOLVER",
+    "CONTROL_THERMAL_TIMESTEP",
+    "CONTROL_TERMINATION",
 ];
+
+/// Keywords dynars 1.1 has no schema for (parsed and class-checked by PyDyna in `pydyna.rs`).
+const NO_DYNARS_SCHEMA: &[&str] = &["HOURGLASS"];
 
 /// Relative tolerance of a 10-column field: 6 significant digits (templates::SIG_D10).
 fn close6(got: f64, want: f64) -> bool {
@@ -64,7 +71,11 @@ fn dynars_reads_back_every_exported_deck() {
         assert_eq!(names, written, "{}: dynars saw a different keyword sequence", case.key);
         for k in file.keywords().filter(|k| !matches!(k.name(), "KEYWORD" | "TITLE" | "END")) {
             let base = k.base();
-            assert!(k.has_schema(), "{}: {} has no dynars schema", case.key, k.name());
+            if !k.has_schema() {
+                // dynars 1.1 has no schema for these; the PyDyna test (pydyna.rs) checks them.
+                assert!(NO_DYNARS_SCHEMA.contains(&base.as_str()), "{}: {} has no dynars schema", case.key, k.name());
+                continue;
+            }
             let schema = dynars::keywords::find(&base).map(|s| s.name);
             assert!(
                 EXPECTED_SCHEMA.contains(&base.as_str()) && schema == Some(base.as_str()),
@@ -107,7 +118,13 @@ fn dynars_reads_back_every_exported_deck() {
         assert!(close6(f64_of(&contact, "h0"), 1e5));
         match case.interface.friction {
             Friction::PressureDependentShear { m0, beta_per_pa } => {
-                let k = shear_strength_pa(&jc);
+                // k at the default contact temperature T* = 0.5 (no interface temperature given),
+                // written out from paper Eq 16 at eps = 2, epsdot = 1e4 1/s:
+                // (A + B 2^n)(1 + C ln(1e4/eps0))(1 - 0.5^m)/sqrt(3).
+                let k = (jc.a_pa + jc.b_pa * 2f64.powf(jc.n))
+                    * (1.0 + jc.c * (1e4 / jc.eps0_per_s).ln())
+                    * (1.0 - 0.5f64.powf(jc.m))
+                    / 3f64.sqrt();
                 assert!(close6(f64_of(&contact, "fs"), 2.0));
                 assert!(close6(f64_of(&contact, "vc"), m0 * k * 1e-6));
                 let tbid = f64_of(&contact, "fd");

@@ -12,3 +12,9 @@ mod calculix;
 mod roundtrip;
 // The VFRICTION source compiled with gfortran and called with the documented argument order.
 mod vfriction;
+// The interpreter of the third-party Python readers (skip or fail when missing).
+mod pytools;
+// ansys-materials-manager's MatmlReader reads every MatML file (values compared).
+mod ansys_matml;
+// PyDyna parses every LS-DYNA deck; every referenced ID resolves.
+mod pydyna;

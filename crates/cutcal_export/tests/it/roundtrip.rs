@@ -125,23 +125,41 @@ proptest! {
         // MatML: the JC parameters, read with quick-xml.
         let xml = &render(Dialect::MatMl, &input).unwrap()[0].contents;
         let read = matml_parameters(xml);
-        for (id, w) in [("pa_jc_a", jc.a_pa), ("pa_jc_b", jc.b_pa), ("pa_jc_n", jc.n), ("pa_jc_c", jc.c),
-                        ("pa_jc_m", jc.m), ("pa_jc_tm", jc.tm_c), ("pa_jc_tr", jc.tr_c), ("pa_jc_eps0", jc.eps0_per_s),
-                        ("pa_eq17_m0", m0), ("pa_eq17_beta", beta * 1e-6)] {
+        for (id, w) in [("Initial Yield Stress", jc.a_pa), ("Hardening Constant", jc.b_pa),
+                        ("Hardening Exponent", jc.n), ("Strain Rate Constant", jc.c),
+                        ("Thermal Softening Exponent", jc.m), ("Melting Temperature", jc.tm_c),
+                        ("Reference Temperature", jc.tr_c), ("Reference Strain Rate (/sec)", jc.eps0_per_s),
+                        ("Friction Factor m0", m0), ("Pressure Coefficient beta", beta * 1e-6)] {
             prop_assert!(close(read[id], w, 9), "matml {id}: {} vs {w}", read[id]);
         }
     }
 }
 
-/// `ParameterValue parameter=ID` -> its scalar Data, read by quick-xml (the workpiece's only).
+/// Parameter name (from `ParameterDetails`) -> the first value of its first `ParameterValue`
+/// (the workpiece's), read by quick-xml.
 fn matml_parameters(xml: &str) -> std::collections::BTreeMap<String, f64> {
     use quick_xml::events::Event;
     let mut r = quick_xml::Reader::from_str(xml);
-    let mut out = std::collections::BTreeMap::new();
+    let mut by_id = std::collections::BTreeMap::new();
+    let mut names = std::collections::BTreeMap::new();
     let mut param: Option<String> = None;
+    let mut details: Option<String> = None;
     let mut in_data = false;
+    let mut in_name = false;
     loop {
         match r.read_event().unwrap() {
+            Event::Start(e) if e.name().as_ref() == b"ParameterDetails" => {
+                details = e.try_get_attribute("id").unwrap().map(|a| String::from_utf8(a.value.to_vec()).unwrap());
+            }
+            Event::End(e) if e.name().as_ref() == b"ParameterDetails" => details = None,
+            // The parameter's own Name comes first (unit names follow inside Units): first wins.
+            Event::Start(e) if e.name().as_ref() == b"Name" && details.is_some() => in_name = true,
+            Event::End(e) if e.name().as_ref() == b"Name" => in_name = false,
+            Event::Text(t) if in_name => {
+                if let Some(id) = &details {
+                    names.entry(id.clone()).or_insert_with(|| t.unescape().unwrap().to_string());
+                }
+            }
             Event::Start(e) if e.name().as_ref() == b"ParameterValue" => {
                 param = e.try_get_attribute("parameter").unwrap().map(|a| String::from_utf8(a.value.to_vec()).unwrap());
             }
@@ -150,8 +168,9 @@ fn matml_parameters(xml: &str) -> std::collections::BTreeMap<String, f64> {
             Event::End(e) if e.name().as_ref() == b"ParameterValue" => param = None,
             Event::Text(t) if in_data => {
                 if let Some(p) = &param {
-                    if let Ok(v) = t.unescape().unwrap().parse::<f64>() {
-                        out.entry(p.clone()).or_insert(v);
+                    let text = t.unescape().unwrap();
+                    if let Ok(v) = text.split(',').next().unwrap_or("").trim().parse::<f64>() {
+                        by_id.entry(p.clone()).or_insert(v);
                     }
                 }
             }
@@ -159,7 +178,7 @@ fn matml_parameters(xml: &str) -> std::collections::BTreeMap<String, f64> {
             _ => {}
         }
     }
-    out
+    by_id.into_iter().filter_map(|(id, v)| names.get(&id).map(|n: &String| (n.clone(), v))).collect()
 }
 
 fn assert_all_dialects_fail(case: &common::Case, what: &str) {
