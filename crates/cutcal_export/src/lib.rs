@@ -214,6 +214,8 @@ pub(crate) struct HeaderCtx {
     pub source_test: String,
     pub model_variant: String,
     pub units: String,
+    /// One line per JC parameter outside the literature box of the workpiece's class.
+    pub warnings: Vec<String>,
 }
 
 impl HeaderCtx {
@@ -223,6 +225,24 @@ impl HeaderCtx {
             source_test: input.provenance.source_test.clone(),
             model_variant: input.provenance.model_variant.clone(),
             units: units.to_string(),
+            warnings: literature_warnings(input),
         }
     }
+}
+
+/// The JC parameters outside the literature box of the workpiece's material class
+/// (`cutcal_ident::literature`; class from the room-temperature density), one line each, for every
+/// file header: a set outside its stated physical bounds is never exported silently.
+#[must_use]
+pub fn literature_warnings(input: &ExportInput<'_>) -> Vec<String> {
+    use cutcal_ident::literature::{LiteratureBox, MaterialClass};
+    let m = input.workpiece;
+    let Some(class) = MaterialClass::from_density(m.thermal.density.value(m.room_c)) else {
+        return Vec::new();
+    };
+    let lit = LiteratureBox::of(class);
+    lit.outside(input.jc.n, input.jc.c, input.jc.m)
+        .into_iter()
+        .map(|o| format!("JC {o}: outside the {} literature box of {} published sets", class.name(), lit.sets.len()))
+        .collect()
 }

@@ -203,17 +203,19 @@ pub(crate) fn render(p: &Prepared, input: &ExportInput<'_>) -> Result<Vec<Export
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None))).map_err(xml_err)?;
     let prov = input.provenance;
+    let warnings: String = crate::literature_warnings(input).iter().map(|w| format!(" WARNING: {w}.")).collect();
     let notes = format!(
         "cutcal {}: Ansys Engineering Data (MatML 3.1) export. Source test: {}. Model variant: {}. Units: SI \
          (Pa, kg, m, s, J, W) with temperatures in degC. JC (paper Eq 16) as the property Johnson Cook \
          Strength; thermal tables sample the paper Table 3 polynomials; elastic constants from the material \
          file. Interface: paper Sec 5.1; Eq 17 tau_f = m0 (1 - exp(-beta P)) k(T) with k(T) = \
-         sigma_JC({}, {} 1/s, T)/sqrt(3), the local shear flow stress (Eqs 14, 16), tabulated below Tm.",
+         sigma_JC({}, {} 1/s, T)/sqrt(3), the local shear flow stress (Eqs 14, 16), tabulated below Tm.{}",
         prov.cutcal_version,
         prov.source_test,
         prov.model_variant,
         FRICTION_REFERENCE_STRAIN,
-        FRICTION_REFERENCE_STRAIN_RATE_PER_S
+        FRICTION_REFERENCE_STRAIN_RATE_PER_S,
+        warnings
     );
     // The version attributes are those of the Engineering Data format that ansys-materials-manager
     // writes and reads (its MatmlWriter: 18.0.0.60).

@@ -18,3 +18,5 @@ mod pytools;
 mod ansys_matml;
 // PyDyna parses every LS-DYNA deck; every referenced ID resolves.
 mod pydyna;
+// A JC set outside the literature box is flagged in every header.
+mod literature;
