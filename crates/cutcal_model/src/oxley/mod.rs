@@ -76,6 +76,7 @@ mod equations;
 mod options;
 mod roots;
 mod solve;
+mod temperatures;
 
 use serde::{Deserialize, Serialize};
 
@@ -252,7 +253,7 @@ pub fn predict_from(
     }
     let hints = TemperatureHints::none();
     let ctx = Context { material, jc, conditions, options, physics, hints: &hints };
-    let mut solver = Solver::new(ctx, start.map(|p| (p.phi_rad, p.c0)));
+    let mut solver = Solver::new(ctx, start.map(|p| p.phi_rad));
     let search = match solver.search_delta() {
         Ok(s) => s,
         // A warm start must not change whether a solution is found: retry cold.

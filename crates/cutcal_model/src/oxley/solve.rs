@@ -1,20 +1,30 @@
-//! The nested solve of the extended Oxley model as root finding (after Pantale et al. 2022):
-//! at each delta, (phi, C0) solve `tau_int = m_f k_chip` and `sigma_N = sigma_N'` (damped Newton,
-//! warm-started, with a bracketing fallback: phi by Brent at each C0 on a scanned bracket, C0 by
-//! Brent on a scanned bracket); delta minimises the cutting force (scan, then Brent).
+//! The solve of the extended Oxley model as root finding (after Pantale et al. 2022), using the
+//! structure of the equations: C0 solves the normal-stress condition in closed form at each phi
+//! (it does not depend on delta, `Context::c0_for_phi`), so at each delta only
+//! `tau_int = m_f k_chip` is left, one equation in phi (a secant iteration warm-started from the last
+//! solution, with a phi scan + Brent as the fallback). The primary zone (T_AB, k_AB, forces, T_C)
+//! depends on phi only, and the interface is closed-form in delta at a fixed primary zone.
+//! delta minimises the cutting force: a scan, then the stationarity condition (see
+//! [`Solver::search_delta`]), with Brent's minimiser as the fallback.
 
 use crate::error::ModelError;
 
 use super::equations::{Context, PrimaryZone, State};
 use super::roots::{brent_min, brent_root};
 
-/// Solver state across the delta search: evaluation count, the last (phi, C0) solution, flags.
+/// Largest phi step of the secant iteration, rad.
+const MAX_PHI_STEP: f64 = 0.1;
+
+/// Solver state across the delta search: evaluation count, the last solution, flags.
 pub(crate) struct Solver<'a> {
     pub ctx: Context<'a>,
+    /// Primary-zone evaluations (each with its T_AB and T_C solves).
     pub evaluations: usize,
-    last: Option<(f64, f64)>,
-    /// The primary zone last computed: (phi, C0) repeat across delta (warm starts), and the primary
-    /// zone does not depend on delta, so it is reused exactly when (phi, C0) are bit-identical.
+    /// Last phi solution (or the warm start).
+    last: Option<f64>,
+    /// Last d residual_shear / d phi seen at a solution (a secant estimate), 1/rad.
+    slope: Option<f64>,
+    /// The primary zone last computed, reused exactly when phi is bit-identical.
     primary_cache: Option<PrimaryZone>,
     pub multiple_phi_roots: bool,
 }
@@ -35,114 +45,142 @@ pub(crate) struct DeltaSearch {
     pub converged_share: f64,
 }
 
+/// What the secant iteration in phi solves at each phi.
+#[derive(Clone, Copy)]
+enum Target {
+    /// `tau_int = m_f k_chip` at this delta.
+    Delta(f64),
+    /// `tau_int = m_f k_chip` at the delta where `d k_chip / d delta = 0` inside `(lo, hi)`.
+    Stationary { lo: f64, hi: f64 },
+}
+
 impl<'a> Solver<'a> {
-    pub fn new(ctx: Context<'a>, guess: Option<(f64, f64)>) -> Self {
-        Self { ctx, evaluations: 0, last: guess, primary_cache: None, multiple_phi_roots: false }
+    pub fn new(ctx: Context<'a>, guess: Option<f64>) -> Self {
+        Self { ctx, evaluations: 0, last: guess, slope: None, primary_cache: None, multiple_phi_roots: false }
     }
 
-    fn eval(&mut self, phi: f64, c0: f64, delta: f64) -> Result<State, ModelError> {
+    fn primary(&mut self, phi: f64) -> Result<PrimaryZone, ModelError> {
         if let Some(p) = self.primary_cache {
-            if p.phi_rad.to_bits() == phi.to_bits() && p.c0.to_bits() == c0.to_bits() {
-                return self.ctx.state_from(p, delta);
+            if p.phi_rad.to_bits() == phi.to_bits() {
+                return Ok(p);
             }
         }
         self.evaluations += 1;
-        let p = self.ctx.primary(phi, c0)?;
+        let p = self.ctx.primary(phi)?;
         self.primary_cache = Some(p);
-        self.ctx.state_from(p, delta)
+        Ok(p)
     }
 
-    /// Damped Newton on the two normalised residuals from `guess`, with a forward-difference
-    /// Jacobian, steps limited to 0.1 rad and 20 % of the C0 range, projected onto the ranges,
-    /// backtracking until the residual norm falls.
-    fn newton(&mut self, delta: f64, guess: (f64, f64)) -> Result<State, ModelError> {
+    /// The state at phi for a target: at its delta, or at the stationary delta of k_chip
+    /// (`hint`: the last stationary delta, updated).
+    fn eval(&mut self, phi: f64, target: Target, hint: &mut f64) -> Result<State, ModelError> {
+        let p = self.primary(phi)?;
+        match target {
+            Target::Delta(delta) => self.ctx.state_from(p, delta),
+            Target::Stationary { lo, hi } => {
+                let d = self.stationary_delta(&p, *hint, lo, hi)?;
+                *hint = d;
+                self.ctx.state_from(p, d)
+            }
+        }
+    }
+
+    /// delta in `(lo, hi)` with `d ln k_chip / d ln delta = 0` at a fixed primary zone: Newton in
+    /// ln(delta) with a central-difference slope from `hint`, else Brent on `[lo, hi]`.
+    fn stationary_delta(&self, p: &PrimaryZone, hint: f64, lo: f64, hi: f64) -> Result<f64, ModelError> {
+        let g = |x: f64| -> Result<f64, ModelError> {
+            let v = self.ctx.chip_log_slope(p, x.exp());
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                Err(ModelError::out_of_range("d ln k_chip / d ln delta", v, "a finite number"))
+            }
+        };
+        let (xlo, xhi) = (lo.ln(), hi.ln());
+        let tol = 1e-11;
+        let newton = |x: f64| -> Result<(f64, f64), ModelError> {
+            let h = 1e-5;
+            let (gm, gp) = (g(x - h)?, g(x + h)?);
+            Ok((g(x)?, (gp - gm) / (2.0 * h)))
+        };
+        if let Some(x) = super::roots::newton_1d(newton, hint.ln(), xlo, xhi, tol, 12) {
+            return Ok(x.exp());
+        }
+        let (glo, ghi) = (g(xlo)?, g(xhi)?);
+        Ok(brent_root(g, xlo, xhi, glo, ghi, tol, self.ctx.options.max_bracket_iterations, "stationary delta")?.exp())
+    }
+
+    /// Secant iteration in phi on `residual_shear` from `phi0` (slope from the last solution or a
+    /// forward difference), steps limited to 0.1 rad and kept in the phi range; `None` when it
+    /// leaves the admissible states, stops decreasing the residual or reaches the cap.
+    fn secant(&mut self, phi0: f64, target: Target, hint: &mut f64) -> Option<State> {
         let o = self.ctx.options;
-        let [plo, phi_hi] = o.phi_range_rad;
-        let [clo, chi] = o.c0_range;
+        let [lo, hi] = o.phi_range_rad;
         let tol = o.residual_tolerance;
-        let (mut phi, mut c0) = (guess.0.clamp(plo, phi_hi), guess.1.clamp(clo, chi));
-        let mut s = self.eval(phi, c0, delta)?;
+        let mut x0 = phi0.clamp(lo, hi);
+        let mut s0 = self.eval(x0, target, hint).ok()?;
+        if s0.residual_norm() < tol {
+            return Some(s0);
+        }
+        let mut slope = match self.slope {
+            Some(d) => d,
+            None => {
+                let h = if x0 + 1e-6 <= hi { 1e-6 } else { -1e-6 };
+                let s = self.eval(x0 + h, target, hint).ok()?;
+                (s.residual_shear - s0.residual_shear) / h
+            }
+        };
+        let mut stalls = 0;
         for _ in 0..o.max_newton_iterations {
-            if s.residual_norm() < tol {
-                return Ok(s);
+            if !(slope.is_finite() && slope != 0.0) {
+                return None;
             }
-            let hp = 1e-7;
-            let hc = 1e-7 * c0.max(1.0);
-            let sp = self.eval(phi + hp, c0, delta)?;
-            let sc = self.eval(phi, c0 + hc, delta)?;
-            let j11 = (sp.residual_shear - s.residual_shear) / hp;
-            let j21 = (sp.residual_normal - s.residual_normal) / hp;
-            let j12 = (sc.residual_shear - s.residual_shear) / hc;
-            let j22 = (sc.residual_normal - s.residual_normal) / hc;
-            let det = j11 * j22 - j12 * j21;
-            if !(det.is_finite() && det.abs() > 1e-14 * (j11.abs() + j12.abs()) * (j21.abs() + j22.abs())) {
-                return Err(ModelError::NoConvergence {
-                    what: format!("Oxley (phi, C0) Newton at delta {delta:.4} (singular Jacobian)"),
-                    iterations: 0,
-                    last_change: det,
-                    tolerance: tol,
-                });
+            let step = (-s0.residual_shear / slope).clamp(-MAX_PHI_STEP, MAX_PHI_STEP);
+            let x1 = (x0 + step).clamp(lo, hi);
+            if x1.to_bits() == x0.to_bits() {
+                return None;
             }
-            let mut dp = -(j22 * s.residual_shear - j12 * s.residual_normal) / det;
-            let mut dc = -(-j21 * s.residual_shear + j11 * s.residual_normal) / det;
-            let scale = (dp.abs() / 0.1).max(dc.abs() / (0.2 * (chi - clo))).max(1.0);
-            dp /= scale;
-            dc /= scale;
-            let norm0 = s.residual_norm();
-            let mut accepted = None;
-            let mut t = 1.0;
-            for _ in 0..12 {
-                let (pn, cn) = ((phi + t * dp).clamp(plo, phi_hi), (c0 + t * dc).clamp(clo, chi));
-                if let Ok(sn) = self.eval(pn, cn, delta) {
-                    if sn.residual_norm() < norm0 * (1.0 - 1e-4 * t) {
-                        accepted = Some((pn, cn, sn));
-                        break;
-                    }
+            let s1 = self.eval(x1, target, hint).ok()?;
+            slope = (s1.residual_shear - s0.residual_shear) / (x1 - x0);
+            if s1.residual_norm() < tol {
+                if slope.is_finite() && slope != 0.0 {
+                    self.slope = Some(slope);
                 }
-                t *= 0.5;
+                return Some(s1);
             }
-            match accepted {
-                Some((pn, cn, sn)) => {
-                    phi = pn;
-                    c0 = cn;
-                    s = sn;
-                }
-                None => {
-                    return Err(ModelError::NoConvergence {
-                        what: format!("Oxley (phi, C0) Newton at delta {delta:.4} (no descent step)"),
-                        iterations: 0,
-                        last_change: norm0,
-                        tolerance: tol,
-                    })
+            if s1.residual_shear.abs() >= s0.residual_shear.abs() {
+                stalls += 1;
+                if stalls > 2 {
+                    return None;
                 }
             }
+            (x0, s0) = (x1, s1);
         }
-        if s.residual_norm() < tol {
-            return Ok(s);
-        }
-        Err(ModelError::NoConvergence {
-            what: format!("Oxley (phi, C0) Newton at delta {delta:.4}"),
-            iterations: o.max_newton_iterations,
-            last_change: s.residual_norm(),
-            tolerance: tol,
-        })
+        None
     }
 
-    /// phi solving `tau_int = m_f k_chip` at fixed (C0, delta): a grid scan for the first sign
-    /// change from the low end of the range, then Brent.
-    fn phi_root(&mut self, c0: f64, delta: f64) -> Result<State, ModelError> {
+    /// phi solving `tau_int = m_f k_chip` at delta by bracketing: a grid scan for the first sign
+    /// change from the low end of the phi range, then Brent.
+    fn scan_root(&mut self, delta: f64) -> Result<State, ModelError> {
         let o = self.ctx.options;
         let [lo, hi] = o.phi_range_rad;
         let n = o.phi_scan_points;
+        let target = Target::Delta(delta);
+        let mut unused = delta;
         let mut prev: Option<(f64, f64)> = None;
         let mut found: Option<(f64, f64, f64, f64)> = None;
         let mut changes = 0;
         let (mut r_min, mut r_max) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut first_err = None;
         for i in 0..n {
             let phi = lo + (hi - lo) * i as f64 / (n - 1) as f64;
-            let Ok(s) = self.eval(phi, c0, delta) else {
-                prev = None;
-                continue;
+            let s = match self.eval(phi, target, &mut unused) {
+                Ok(s) => s,
+                Err(e) => {
+                    first_err.get_or_insert(e);
+                    prev = None;
+                    continue;
+                }
             };
             let r = s.residual_shear;
             r_min = r_min.min(r);
@@ -162,34 +200,41 @@ impl<'a> Solver<'a> {
         }
         let Some((a, b, fa, fb)) = found else {
             return Err(ModelError::NoSolution {
-                what: format!("Oxley shear angle (tau_int = k_chip) at C0 {c0:.3}, delta {delta:.4}"),
+                what: format!("Oxley shear angle (tau_int = k_chip) at delta {delta:.4}"),
                 low: lo.to_degrees(),
                 high: hi.to_degrees(),
-                detail: self.no_phi_reason(r_min, r_max),
+                detail: self.no_phi_reason(r_min, r_max, first_err),
             });
         };
-        let xtol = 1e-12;
-        let mut evals = 0;
         let phi = {
-            let ctx = self.ctx;
-            let f = |phi: f64| -> Result<f64, ModelError> {
-                evals += 1;
-                Ok(ctx.state(phi, c0, delta)?.residual_shear)
-            };
-            brent_root(f, a, b, fa, fb, xtol, o.max_bracket_iterations, "Oxley shear angle (tau_int = k_chip)")?
+            let f = |phi: f64| -> Result<f64, ModelError> { Ok(self.eval(phi, target, &mut unused)?.residual_shear) };
+            brent_root(f, a, b, fa, fb, 1e-12, o.max_bracket_iterations, "Oxley shear angle (tau_int = k_chip)")?
         };
-        self.evaluations += evals;
-        self.eval(phi, c0, delta)
+        let s = self.eval(phi, target, &mut unused)?;
+        if s.residual_norm() < o.residual_tolerance {
+            return Ok(s);
+        }
+        // Brent stops on the bracket width; polish the residual with the secant from there.
+        self.secant(phi, target, &mut unused).ok_or_else(|| ModelError::NoConvergence {
+            what: format!("Oxley shear angle (tau_int = k_chip) at delta {delta:.4}"),
+            iterations: o.max_newton_iterations,
+            last_change: s.residual_norm(),
+            tolerance: o.residual_tolerance,
+        })
     }
 
     /// The physical reason why `tau_int = k_chip` has no root over the phi range, from the extreme
     /// residuals `(tau_int - k_chip)/k_AB` seen and the thermal number `R_T = rho Cp V t1 / K` at T_w.
-    fn no_phi_reason(&self, r_min: f64, r_max: f64) -> String {
+    fn no_phi_reason(&self, r_min: f64, r_max: f64, first_err: Option<ModelError>) -> String {
         let c = self.ctx.conditions;
         let (rho_cp, k) = self.ctx.thermal(c.work_temperature_c);
         let rt = rho_cp * c.speed_m_per_s * c.uncut_chip_thickness_m / k;
         if !r_max.is_finite() {
-            format!("no admissible state over the phi range (deg) (thermal number R_T = {rt:.2})")
+            let e = first_err.map_or_else(String::new, |e| e.to_string());
+            format!(
+                "no admissible state at any phi, so tau_int = k_chip cannot be solved (thermal number R_T = {rt:.2}); \
+                 first reason: {e}; phi range (deg)"
+            )
         } else if r_max < 0.0 {
             format!(
                 "tau_int < k_chip at every phi (largest (tau_int - k_chip)/k_AB = {r_max:.3}): the friction stress the \
@@ -206,86 +251,32 @@ impl<'a> Solver<'a> {
         }
     }
 
-    /// (phi, C0) by nested bracketing: a C0 grid scan of `sigma_N - sigma_N'` (each point with its
-    /// phi root), then Brent on the first sign change.
-    fn bracketed(&mut self, delta: f64) -> Result<State, ModelError> {
-        let o = self.ctx.options;
-        let [lo, hi] = o.c0_range;
-        let n = o.c0_scan_points;
-        let mut prev: Option<(f64, f64)> = None;
-        let mut found = None;
-        let mut first_err = None;
-        let (mut r_lo, mut r_hi) = (f64::NAN, f64::NAN);
-        for i in 0..n {
-            let c0 = lo + (hi - lo) * i as f64 / (n - 1) as f64;
-            let s = match self.phi_root(c0, delta) {
-                Ok(s) => s,
-                Err(e) => {
-                    first_err.get_or_insert(e);
-                    prev = None;
-                    continue;
-                }
-            };
-            let r = s.residual_normal;
-            if r_lo.is_nan() {
-                r_lo = r;
-            }
-            r_hi = r;
-            if let Some((c_prev, r_prev)) = prev {
-                if (r_prev > 0.0) != (r > 0.0) {
-                    found = Some((c_prev, c0, r_prev, r));
-                    break;
-                }
-            }
-            prev = Some((c0, r));
-        }
-        let Some((a, b, fa, fb)) = found else {
-            let detail = if r_lo.is_nan() {
-                format!("no shear angle at any C0: {}", first_err.map_or_else(String::new, |e| e.to_string()))
-            } else {
-                format!(
-                    "no sign change of (sigma_N - sigma_N')/k_AB: {r_lo:.4} at the low end, {r_hi:.4} at the high end"
-                )
-            };
-            return Err(ModelError::NoSolution {
-                what: format!("Oxley strain-rate constant C0 (sigma_N = sigma_N') at delta {delta:.4}"),
-                low: lo,
-                high: hi,
-                detail,
-            });
-        };
-        let c0 = {
-            let f = |c0: f64| -> Result<f64, ModelError> { Ok(self.phi_root(c0, delta)?.residual_normal) };
-            brent_root(f, a, b, fa, fb, 1e-10, o.max_bracket_iterations, "Oxley strain-rate constant C0")?
-        };
-        self.phi_root(c0, delta)
-    }
-
-    /// (phi, C0) at one delta: warm-started Newton, else nested bracketing.
+    /// (phi, C0) at one delta: the secant from the last solution, else the bracketing scan.
     pub fn solve_at(&mut self, delta: f64) -> Result<State, ModelError> {
-        let tol = self.ctx.options.residual_tolerance;
-        // Warm start from the last solution; on a cold start, from phi = 22 deg + 0.8 alpha and
-        // C0 = 5 (a rough fit to Lalwani et al. 2009's AISI 1045 solutions; only a starting point).
+        // Cold start: phi = 22 deg + 0.8 alpha (a rough fit to Lalwani et al. 2009's AISI 1045
+        // solutions; only a starting point).
         let alpha = self.ctx.conditions.rake_rad;
-        let guess = self.last.unwrap_or((22f64.to_radians() + 0.8 * alpha, 5.0));
-        if let Ok(s) = self.newton(delta, guess) {
-            self.last = Some((s.primary.phi_rad, s.primary.c0));
-            return Ok(s);
-        }
-        let s = self.bracketed(delta)?;
-        if s.residual_norm() >= tol {
-            // Brent stops on the bracket width; polish the residual with Newton from there.
-            let s = self.newton(delta, (s.primary.phi_rad, s.primary.c0))?;
-            self.last = Some((s.primary.phi_rad, s.primary.c0));
-            return Ok(s);
-        }
-        self.last = Some((s.primary.phi_rad, s.primary.c0));
+        let guess = self.last.unwrap_or(22f64.to_radians() + 0.8 * alpha);
+        let mut unused = delta;
+        let s = match self.secant(guess, Target::Delta(delta), &mut unused) {
+            Some(s) => s,
+            None => self.scan_root(delta)?,
+        };
+        self.last = Some(s.primary.phi_rad);
         Ok(s)
     }
 
-    /// delta minimising the chip-formation cutting force: a geometric scan of the delta range,
-    /// Brent's minimiser in ln(delta) between the neighbours of the best scan point, and the
-    /// flatness probes at delta*(1 -/+ band).
+    /// delta minimising the chip-formation cutting force: a geometric scan of the delta range, the
+    /// minimum between the neighbours of the best scan point, and the flatness probes at
+    /// delta*(1 -/+ band).
+    ///
+    /// The minimum: Fc depends on phi only (through the primary zone), so `dFc/d delta =
+    /// dFc/dphi dphi/d delta`, and with `tau_int/k_AB` independent of delta, `dphi/d delta = 0` exactly
+    /// where `d k_chip / d delta = 0` at the solution. The minimum is therefore solved as one
+    /// equation in phi, `tau_int = m_f k_chip` at the stationary delta of k_chip (the converged
+    /// minimum, not one to a delta tolerance); it is accepted when it lies strictly between the
+    /// neighbours and its Fc does not exceed the scan's best. Otherwise (e.g. dFc/dphi = 0) Brent's
+    /// minimiser in ln(delta) is used as before (Brent 1973, Ch. 5).
     pub fn search_delta(&mut self) -> Result<DeltaSearch, ModelError> {
         let o = self.ctx.options;
         let [dlo, dhi] = o.delta_range;
@@ -328,7 +319,19 @@ impl<'a> Solver<'a> {
         let right = grid.get(ib + 1).copied().flatten();
         let at_bound = left.is_none() || right.is_none();
         let mut best = best;
+        let mut refined = false;
         if let (Some(l), Some(r), None) = (left, right, o.delta_grid_step) {
+            let mut hint = best.delta;
+            let phi0 = best.state.primary.phi_rad;
+            if let Some(s) = self.secant(phi0, Target::Stationary { lo: l.delta, hi: r.delta }, &mut hint) {
+                let p = DeltaPoint { delta: s.interface.delta, state: s };
+                if p.delta > l.delta && p.delta < r.delta && fc(&p) <= fc(&best) * (1.0 + 1e-12) {
+                    best = p;
+                    refined = true;
+                }
+            }
+        }
+        if let (Some(l), Some(r), None, false) = (left, right, o.delta_grid_step, refined) {
             // Refine in ln(delta); infeasible points stop the refinement (the scan best is kept).
             let mut found = best;
             let res = {
@@ -357,7 +360,7 @@ impl<'a> Solver<'a> {
             if d < dlo || d > dhi {
                 continue;
             }
-            self.last = Some((best.state.primary.phi_rad, best.state.primary.c0));
+            self.last = Some(best.state.primary.phi_rad);
             if let Ok(s) = self.solve_at(d) {
                 let rel = (s.primary.cutting_force_n_per_m / fc(&best) - 1.0).abs();
                 change = Some(change.map_or(rel, |c| c.max(rel)));
