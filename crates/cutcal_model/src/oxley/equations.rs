@@ -19,6 +19,9 @@ use super::options::{CuttingConditions, OxleyOptions, Physics};
 
 pub(crate) const SQRT3: f64 = 1.732_050_807_568_877_2;
 
+/// 10^0.06, the constant of Oxley's interface-temperature relation (Oxley 1989, Sec. 4.3).
+const TEN_POW_0_06: f64 = 1.148_153_621_496_882_8;
+
 /// Everything the relations need, borrowed.
 #[derive(Clone, Copy)]
 pub(crate) struct Context<'a> {
@@ -151,7 +154,7 @@ impl Context<'_> {
     /// (derivation in docs/oxley.md). It does not depend on delta or on any temperature.
     /// Of the roots with C0 in the range and an admissible geometry (0 < lambda < 90 deg, h > 0),
     /// the smaller C0 is returned.
-    pub fn c0_for_phi(&self, phi_rad: f64, n_eq: f64) -> Result<f64, ModelError> {
+    pub fn c0_for_phi(&self, phi_rad: f64, n_eq: f64, s_psi: f64, c_psi: f64) -> Result<f64, ModelError> {
         let alpha = self.conditions.rake_rad;
         let [clo, chi] = self.options.c0_range;
         let what =
@@ -164,7 +167,6 @@ impl Context<'_> {
                 detail: "n_eq = 0: the normal-stress balance does not depend on C0 (no strain hardening)".into(),
             });
         }
-        let (s_psi, c_psi) = (phi_rad - alpha).sin_cos();
         let t0 = 1.0 + 2.0 * (FRAC_PI_4 - phi_rad);
         let k = 1.0 + FRAC_PI_2 - 2.0 * alpha;
         let a = c_psi + t0 * s_psi;
@@ -186,8 +188,9 @@ impl Context<'_> {
             let c0 = u / n_eq;
             let tan_theta = t0 - u;
             let lambda = tan_theta.atan() - phi_rad + alpha;
-            let h_factor = (3.0 * tan_theta + u) / (3.0 * tan_theta);
-            c0 >= clo && c0 <= chi && lambda > 0.0 && lambda < FRAC_PI_2 && h_factor * tan_theta.atan().sin() > 0.0
+            // h > 0: sin(theta) has the sign of tan(theta) and cos(lambda) > 0 here.
+            let h_factor = (3.0 * tan_theta + u) / 3.0;
+            c0 >= clo && c0 <= chi && lambda > 0.0 && lambda < FRAC_PI_2 && h_factor > 0.0
         };
         let best = roots.iter().copied().filter(|u| u.is_finite() && admissible(*u)).map(|u| u / n_eq).reduce(f64::min);
         best.ok_or_else(|| {
@@ -205,50 +208,42 @@ impl Context<'_> {
         })
     }
 
-    /// The primary zone at phi with C0 from [`Context::c0_for_phi`].
+    /// The primary zone, the force system and the chip temperature at phi, with C0 from
+    /// [`Context::c0_for_phi`] (the only C0 that satisfies the normal-stress condition there).
+    ///
+    /// Returns an error if no C0 in the range satisfies it, if the state is non-physical (a
+    /// non-positive flow stress at the work temperature, a friction angle outside (0, 90) deg, a
+    /// non-positive contact length) or the temperature at AB reaches melting with thermal softening
+    /// switched off.
     pub fn primary(&self, phi_rad: f64) -> Result<PrimaryZone, ModelError> {
         let c = self.conditions;
-        let strain = c.rake_rad.cos() / (2.0 * phi_rad.sin() * (phi_rad - c.rake_rad).cos()) / SQRT3;
-        let c0 = self.c0_for_phi(phi_rad, self.n_eq(strain))?;
-        self.primary_at(phi_rad, c0)
-    }
-
-    /// Equivalent hardening index n_eq = n B eps^n / (A + B eps^n) (Lalwani et al. 2009, Sec. 2).
-    fn n_eq(&self, strain: f64) -> f64 {
-        let hard = self.jc.hardening(strain);
-        if strain > 0.0 && hard > 0.0 {
-            self.jc.n * self.jc.b_pa * strain.powf(self.jc.n) / hard
-        } else {
-            0.0
-        }
-    }
-
-    /// The primary zone, the force system and the chip temperature at (phi, C0).
-    ///
-    /// Returns an error if the state is non-physical (a non-positive flow stress at the work
-    /// temperature, a friction angle outside (0, 90) deg, a non-positive contact length) or the
-    /// temperature at AB reaches melting with thermal softening switched off.
-    pub fn primary_at(&self, phi_rad: f64, c0: f64) -> Result<PrimaryZone, ModelError> {
-        let c = self.conditions;
         let (alpha, v, t1, tw) = (c.rake_rad, c.speed_m_per_s, c.uncut_chip_thickness_m, c.work_temperature_c);
+        // sin/cos of phi, alpha and phi - alpha (angle addition; no repeated trigonometric calls).
         let (sin_phi, cos_phi) = phi_rad.sin_cos();
-        let cos_pa = (phi_rad - alpha).cos();
+        let (sin_a, cos_a) = alpha.sin_cos();
+        let cos_pa = cos_phi * cos_a + sin_phi * sin_a;
+        let sin_pa = sin_phi * cos_a - cos_phi * sin_a;
+        // Strain at AB: gamma_AB = cos(alpha) / (2 sin(phi) cos(phi - alpha)), eps_AB = gamma_AB / sqrt(3)
+        // (Lalwani et al. 2009, Sec. 2).
+        let gamma_ab = cos_a / (2.0 * sin_phi * cos_pa);
+        let strain = gamma_ab / SQRT3;
+        // Equivalent hardening index n_eq = n B eps^n / (A + B eps^n) (Lalwani et al. 2009, Sec. 2).
+        let b_en = self.jc.b_pa * strain.powf(self.jc.n);
+        let hard = self.jc.a_pa + b_en;
+        let n_eq = if strain > 0.0 && hard > 0.0 { self.jc.n * b_en / hard } else { 0.0 };
+        let c0 = self.c0_for_phi(phi_rad, n_eq, sin_pa, cos_pa)?;
         // Shear-plane length l_AB = t1 / sin(phi) (Lalwani et al. 2009, Sec. 2).
         let l_ab = t1 / sin_phi;
         // Shear velocity V_s = V cos(alpha)/cos(phi - alpha); chip velocity V_c = V sin(phi)/cos(phi - alpha)
         // (Oxley 1989, Sec. 4.2, hodograph).
-        let v_s = v * alpha.cos() / cos_pa;
+        let v_s = v * cos_a / cos_pa;
         let v_c = v * sin_phi / cos_pa;
-        // Strain and strain rate at AB: gamma_AB = cos(alpha) / (2 sin(phi) cos(phi - alpha)),
-        // eps_AB = gamma_AB / sqrt(3); epsdot_AB = C0 V_s / (sqrt(3) l_AB) (Lalwani et al. 2009, Sec. 2).
-        let gamma_ab = alpha.cos() / (2.0 * sin_phi * cos_pa);
-        let strain = gamma_ab / SQRT3;
+        // Strain rate at AB: epsdot_AB = C0 V_s / (sqrt(3) l_AB) (Lalwani et al. 2009, Sec. 2).
         let strain_rate = c0 * v_s / (SQRT3 * l_ab);
         // The athermal part (A + B eps^n)(1 + C ln epsdot) is fixed at (phi, C0): evaluated once.
-        let hard = self.jc.hardening(strain);
         let athermal = hard * self.jc.rate_factor(strain_rate);
         let tan_phi = sin_phi / cos_phi;
-        let k_at_work = self.flow_stress_pa(strain, strain_rate, tw) / SQRT3;
+        let k_at_work = athermal * self.softening_d(tw).0 / SQRT3;
         if !(k_at_work.is_finite() && k_at_work > 0.0) {
             return Err(ModelError::out_of_range(
                 "primary-zone flow stress at the work temperature (Pa)",
@@ -257,7 +252,7 @@ impl Context<'_> {
             ));
         }
         // T_AB = T_w + eta dT_SZ (Oxley 1989, Sec. 4.3), solved in temperatures.rs.
-        let ab = self.solve_t_ab(athermal, sin_phi, cos_pa, tan_phi)?;
+        let ab = self.solve_t_ab(athermal, cos_a / (sin_phi * cos_pa), tan_phi)?;
         let (t_ab, d_t_sz, k_ab) = (ab.t_ab_c, ab.rise_sz_c, ab.k_ab_pa);
         let tm = self.jc.tm_c.min(self.material.melting_c);
         if !(k_ab > 0.0) {
@@ -267,7 +262,6 @@ impl Context<'_> {
                 melting_c: tm,
             });
         }
-        let n_eq = self.n_eq(strain);
         // Direction of the resultant: tan(theta) = 1 + 2(pi/4 - phi) - C0 n_eq (Oxley 1989, Sec. 4.2).
         let tan_theta = 1.0 + 2.0 * (FRAC_PI_4 - phi_rad) - c0 * n_eq;
         let theta = tan_theta.atan();
@@ -283,10 +277,13 @@ impl Context<'_> {
         // Forces per unit width: F_s = k_AB l_AB, R = F_s / cos(theta), F = R sin(lambda),
         // N = R cos(lambda), F_c = R cos(lambda - alpha), F_t = R sin(lambda - alpha) (Oxley 1989, Sec. 4.2).
         let f_s = k_ab * l_ab;
-        let (sin_theta, cos_theta) = theta.sin_cos();
+        // Trigonometry of theta, lambda = theta - (phi - alpha) and lambda - alpha = theta - phi by
+        // angle addition from tan(theta).
+        let cos_theta = 1.0 / (1.0 + tan_theta * tan_theta).sqrt();
+        let sin_theta = tan_theta * cos_theta;
         let r = f_s / cos_theta;
-        let (sin_la, cos_la) = (lambda - alpha).sin_cos();
-        let (sin_l, cos_l) = lambda.sin_cos();
+        let (sin_la, cos_la) = (sin_theta * cos_phi - cos_theta * sin_phi, cos_theta * cos_phi + sin_theta * sin_phi);
+        let (sin_l, cos_l) = (sin_theta * cos_pa - cos_theta * sin_pa, cos_theta * cos_pa + sin_theta * sin_pa);
         let (f_c, f_t) = (r * cos_la, r * sin_la);
         let (fr, nr) = (r * sin_l, r * cos_l);
         // Chip thickness t2 = t1 cos(phi - alpha) / sin(phi) (Oxley 1989, Sec. 4.2).
@@ -318,7 +315,7 @@ impl Context<'_> {
         let chip = ChipHeat {
             base_c: base,
             chip_temperature_c: t_c,
-            amplitude_c: self.options.psi * d_t_c * 10f64.powf(0.06) * gr_sqrt,
+            amplitude_c: self.options.psi * d_t_c * TEN_POW_0_06 * gr_sqrt,
             decay: 0.195 * LN_10 * gr_sqrt,
             strain_coef: 0.5 * h / (SQRT3 * t2),
             rate_coef_per_s: v_c / (SQRT3 * t2),

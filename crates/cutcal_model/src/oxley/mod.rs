@@ -74,6 +74,7 @@
 mod edge;
 mod equations;
 mod options;
+mod pool;
 mod roots;
 mod solve;
 mod temperatures;

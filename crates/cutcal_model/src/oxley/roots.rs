@@ -106,7 +106,8 @@ where
 /// Recipes*, 3rd ed. 2007, Sec. 9.4): an iterate that would leave the interval is put on its end,
 /// and a second push past the same end gives up.
 ///
-/// Returns `Some(x)` once a step is at most `xtol`, `None` when the iteration leaves the interval,
+/// Returns the last evaluated `x` once the step from it is at most `xtol`; `None` when the
+/// iteration leaves the interval,
 /// meets a zero or non-finite derivative, an error of `f`, or `max_iter` (callers then bracket the
 /// whole interval with [`brent_root`]: the root is the same to `xtol`, only the work differs).
 pub(crate) fn newton_1d<F>(mut f: F, x0: f64, lo: f64, hi: f64, xtol: f64, max_iter: usize) -> Option<f64>
@@ -124,7 +125,9 @@ where
         }
         let step = fx / dfx;
         if step.abs() <= xtol {
-            return Some(x - step);
+            // The evaluated point: within about |step| <= xtol of the root (quadratic convergence),
+            // so the caller can reuse what it computed there.
+            return Some(x);
         }
         let xn = x - step;
         let clipped = xn.clamp(lo, hi);

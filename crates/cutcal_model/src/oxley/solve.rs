@@ -10,12 +10,16 @@
 use crate::error::ModelError;
 
 use super::equations::{Context, PrimaryZone, State};
+use super::pool::Pool;
 use super::roots::{brent_min, brent_root};
 
 /// Largest phi step of the secant iteration, rad.
-const MAX_PHI_STEP: f64 = 0.1;
+const MAX_PHI_STEP: f64 = 0.05;
 
-/// Solver state across the delta search: evaluation count, the last solution, flags.
+/// Primary zones kept for reuse.
+const RECENT: usize = 4;
+
+/// Solver state across the delta search: evaluation count, the last solutions, flags.
 pub(crate) struct Solver<'a> {
     pub ctx: Context<'a>,
     /// Primary-zone evaluations (each with its T_AB and T_C solves).
@@ -24,8 +28,14 @@ pub(crate) struct Solver<'a> {
     last: Option<f64>,
     /// Last d residual_shear / d phi seen at a solution (a secant estimate), 1/rad.
     slope: Option<f64>,
-    /// The primary zone last computed, reused exactly when phi is bit-identical.
-    primary_cache: Option<PrimaryZone>,
+    /// The last primary zones computed (a ring): reused exactly when phi is bit-identical, and
+    /// their residuals at a new delta (closed-form) are the first points of the next root search.
+    recent: [Option<PrimaryZone>; RECENT],
+    next_slot: usize,
+    /// The last solutions (ln delta, phi), oldest first: the starting point at a new delta is
+    /// their Lagrange extrapolation in ln delta.
+    history: [(f64, f64); 3],
+    n_history: usize,
     pub multiple_phi_roots: bool,
 }
 
@@ -56,25 +66,67 @@ enum Target {
 
 impl<'a> Solver<'a> {
     pub fn new(ctx: Context<'a>, guess: Option<f64>) -> Self {
-        Self { ctx, evaluations: 0, last: guess, slope: None, primary_cache: None, multiple_phi_roots: false }
+        Self {
+            ctx,
+            evaluations: 0,
+            last: guess,
+            slope: None,
+            recent: [None; RECENT],
+            next_slot: 0,
+            history: [(f64::NAN, f64::NAN); 3],
+            n_history: 0,
+            multiple_phi_roots: false,
+        }
     }
 
     fn primary(&mut self, phi: f64) -> Result<PrimaryZone, ModelError> {
-        if let Some(p) = self.primary_cache {
-            if p.phi_rad.to_bits() == phi.to_bits() {
-                return Ok(p);
-            }
+        if let Some(p) = self.recent.iter().flatten().find(|p| p.phi_rad.to_bits() == phi.to_bits()) {
+            return Ok(*p);
         }
         self.evaluations += 1;
         let p = self.ctx.primary(phi)?;
-        self.primary_cache = Some(p);
+        self.recent[self.next_slot] = Some(p);
+        self.next_slot = (self.next_slot + 1) % RECENT;
         Ok(p)
+    }
+
+    /// phi at `delta` extrapolated (Lagrange, in ln delta) from the last solutions; `None` without
+    /// history or when it moves more than [`MAX_PHI_STEP`] from the last solution.
+    fn predict_phi(&self, delta: f64) -> Option<f64> {
+        let h = &self.history[3 - self.n_history..];
+        let (x, last) = (delta.ln(), h.last()?.1);
+        let mut phi = 0.0;
+        for (i, &(xi, pi)) in h.iter().enumerate() {
+            let mut w = 1.0;
+            for (j, &(xj, _)) in h.iter().enumerate() {
+                if i != j {
+                    w *= (x - xj) / (xi - xj);
+                }
+            }
+            phi += w * pi;
+        }
+        (phi.is_finite() && (phi - last).abs() <= MAX_PHI_STEP).then_some(phi)
+    }
+
+    fn remember(&mut self, delta: f64, phi: f64) {
+        let x = delta.ln();
+        if self.history[3 - self.n_history..].iter().any(|h| h.0.to_bits() == x.to_bits()) {
+            return;
+        }
+        self.history.rotate_left(1);
+        self.history[2] = (x, phi);
+        self.n_history = (self.n_history + 1).min(3);
     }
 
     /// The state at phi for a target: at its delta, or at the stationary delta of k_chip
     /// (`hint`: the last stationary delta, updated).
     fn eval(&mut self, phi: f64, target: Target, hint: &mut f64) -> Result<State, ModelError> {
         let p = self.primary(phi)?;
+        self.state_for(p, target, hint)
+    }
+
+    /// The state of a computed primary zone for a target.
+    fn state_for(&self, p: PrimaryZone, target: Target, hint: &mut f64) -> Result<State, ModelError> {
         match target {
             Target::Delta(delta) => self.ctx.state_from(p, delta),
             Target::Stationary { lo, hi } => {
@@ -110,51 +162,79 @@ impl<'a> Solver<'a> {
         Ok(brent_root(g, xlo, xhi, glo, ghi, tol, self.ctx.options.max_bracket_iterations, "stationary delta")?.exp())
     }
 
-    /// Secant iteration in phi on `residual_shear` from `phi0` (slope from the last solution or a
-    /// forward difference), steps limited to 0.1 rad and kept in the phi range; `None` when it
-    /// leaves the admissible states, stops decreasing the residual or reaches the cap.
+    /// Local root of `residual_shear` in phi near `phi0`: the recent primary zones within 0.1 rad of
+    /// `phi0` give exact residuals at this target at no primary-zone cost; then inverse quadratic
+    /// interpolation / secant steps ([`Pool::next`]), each limited to 0.1 rad and kept in the phi
+    /// range. `None` when it leaves the admissible states, stops decreasing the residual or reaches
+    /// the cap (the caller then brackets).
     fn secant(&mut self, phi0: f64, target: Target, hint: &mut f64) -> Option<State> {
         let o = self.ctx.options;
         let [lo, hi] = o.phi_range_rad;
         let tol = o.residual_tolerance;
-        let mut x0 = phi0.clamp(lo, hi);
-        let mut s0 = self.eval(x0, target, hint).ok()?;
-        if s0.residual_norm() < tol {
-            return Some(s0);
-        }
-        let mut slope = match self.slope {
-            Some(d) => d,
-            None => {
-                let h = if x0 + 1e-6 <= hi { 1e-6 } else { -1e-6 };
-                let s = self.eval(x0 + h, target, hint).ok()?;
-                (s.residual_shear - s0.residual_shear) / h
+        let x0 = phi0.clamp(lo, hi);
+        let mut pool = Pool::new();
+        let mut found: Option<State> = None;
+        // The two most recent primary zones (the end of the last root search).
+        for k in 1..=2 {
+            let Some(p) = self.recent[(self.next_slot + RECENT - k) % RECENT] else { continue };
+            if (p.phi_rad - x0).abs() > MAX_PHI_STEP {
+                continue;
             }
-        };
+            if let Ok(s) = self.state_for(p, target, hint) {
+                pool.push(p.phi_rad, s.residual_shear);
+                if s.residual_norm() < tol && found.map_or(true, |f| s.residual_shear.abs() < f.residual_shear.abs()) {
+                    found = Some(s);
+                }
+            }
+        }
+        if found.is_some() {
+            return found;
+        }
+        // With two cached points the first step is Newton's with the exact slope at this target;
+        // otherwise start at phi0.
+        if pool.len() < 2 {
+            if let Ok(s) = self.eval(x0, target, hint) {
+                if s.residual_norm() < tol {
+                    return Some(s);
+                }
+                pool.push(x0, s.residual_shear);
+            }
+        }
+        if pool.len() == 1 {
+            // One point: a second one from the last slope, else a forward difference.
+            let (x, r) = pool.best()?;
+            let x1 = match self.slope {
+                Some(d) => x - (r / d).clamp(-MAX_PHI_STEP, MAX_PHI_STEP),
+                None => x + if x + 1e-6 <= hi { 1e-6 } else { -1e-6 },
+            };
+            let s = self.eval(x1.clamp(lo, hi), target, hint).ok()?;
+            if s.residual_norm() < tol {
+                return Some(s);
+            }
+            pool.push(s.primary.phi_rad, s.residual_shear);
+        }
         let mut stalls = 0;
         for _ in 0..o.max_newton_iterations {
-            if !(slope.is_finite() && slope != 0.0) {
+            let (xb, rb) = pool.best()?;
+            let x = pool.next(MAX_PHI_STEP)?.clamp(lo, hi);
+            if x.to_bits() == xb.to_bits() {
                 return None;
             }
-            let step = (-s0.residual_shear / slope).clamp(-MAX_PHI_STEP, MAX_PHI_STEP);
-            let x1 = (x0 + step).clamp(lo, hi);
-            if x1.to_bits() == x0.to_bits() {
-                return None;
-            }
-            let s1 = self.eval(x1, target, hint).ok()?;
-            slope = (s1.residual_shear - s0.residual_shear) / (x1 - x0);
-            if s1.residual_norm() < tol {
+            let s = self.eval(x, target, hint).ok()?;
+            if s.residual_norm() < tol {
+                let slope = (s.residual_shear - rb) / (x - xb);
                 if slope.is_finite() && slope != 0.0 {
                     self.slope = Some(slope);
                 }
-                return Some(s1);
+                return Some(s);
             }
-            if s1.residual_shear.abs() >= s0.residual_shear.abs() {
+            if s.residual_shear.abs() >= rb.abs() {
                 stalls += 1;
                 if stalls > 2 {
                     return None;
                 }
             }
-            (x0, s0) = (x1, s1);
+            pool.push(x, s.residual_shear);
         }
         None
     }
@@ -256,13 +336,14 @@ impl<'a> Solver<'a> {
         // Cold start: phi = 22 deg + 0.8 alpha (a rough fit to Lalwani et al. 2009's AISI 1045
         // solutions; only a starting point).
         let alpha = self.ctx.conditions.rake_rad;
-        let guess = self.last.unwrap_or(22f64.to_radians() + 0.8 * alpha);
+        let guess = self.predict_phi(delta).or(self.last).unwrap_or(22f64.to_radians() + 0.8 * alpha);
         let mut unused = delta;
         let s = match self.secant(guess, Target::Delta(delta), &mut unused) {
             Some(s) => s,
             None => self.scan_root(delta)?,
         };
         self.last = Some(s.primary.phi_rad);
+        self.remember(delta, s.primary.phi_rad);
         Ok(s)
     }
 

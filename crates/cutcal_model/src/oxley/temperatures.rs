@@ -33,6 +33,16 @@ pub(crate) struct AbTemperature {
     pub beta_outside: bool,
 }
 
+/// Value and first derivative of `sum c_i T^i` in one Horner pass.
+fn horner(coefficients: &[f64], t: f64) -> (f64, f64) {
+    let (mut p, mut d) = (0.0, 0.0);
+    for &c in coefficients.iter().rev() {
+        d = d * t + p;
+        p = p * t + c;
+    }
+    (p, d)
+}
+
 impl Context<'_> {
     /// rho Cp, d(rho Cp)/dT, K and dK/dT at `temperature_c`, clamped to the material's validity
     /// range (the fits are not extrapolated; outside it the derivatives are 0).
@@ -40,8 +50,13 @@ impl Context<'_> {
         let th = &self.material.thermal;
         let t = temperature_c.clamp(th.valid_from_c, th.valid_to_c);
         let inside = temperature_c > th.valid_from_c && temperature_c < th.valid_to_c;
-        let d = |p: &crate::TempPolynomial| if inside { p.derivative(t) } else { 0.0 };
-        (th.rho_cp.value(t), d(&th.rho_cp), th.conductivity.value(t), d(&th.conductivity))
+        let (rho_cp, d_rho_cp) = horner(th.rho_cp.coefficients(), t);
+        let (k, d_k) = horner(th.conductivity.coefficients(), t);
+        if inside {
+            (rho_cp, d_rho_cp, k, d_k)
+        } else {
+            (rho_cp, 0.0, k, 0.0)
+        }
     }
 
     /// The JC softening `g = 1 - theta^m` at `T_w + kappa_T (T - T_w)` (the M7 hook) and dg/dT
@@ -88,16 +103,10 @@ impl Context<'_> {
     /// T_AB = T_w + eta dT_SZ with dT_SZ = (1 - beta) k_AB cos(a) / (rho Cp sin(phi) cos(phi - a)),
     /// k_AB = athermal g(T_AB)/sqrt3, rho Cp, K and beta at T_AB (Oxley 1989, Sec. 4.3; Lalwani et al.
     /// 2009, Sec. 2), solved on [T_w, T_m]: Newton from the last T_AB, else Brent.
-    pub(crate) fn solve_t_ab(
-        &self,
-        athermal_pa: f64,
-        sin_phi: f64,
-        cos_pa: f64,
-        tan_phi: f64,
-    ) -> Result<AbTemperature, ModelError> {
+    /// `geo` is `cos(a) / (sin(phi) cos(phi - a))`.
+    pub(crate) fn solve_t_ab(&self, athermal_pa: f64, geo: f64, tan_phi: f64) -> Result<AbTemperature, ModelError> {
         let c = self.conditions;
         let (v, t1, tw, eta) = (c.speed_m_per_s, c.uncut_chip_thickness_m, c.work_temperature_c, self.options.eta);
-        let geo = c.rake_rad.cos() / (sin_phi * cos_pa);
         // Value of dT_SZ and its derivative in T, and the quantities reported.
         let rise = |t: f64| -> (f64, f64, f64, f64, bool) {
             let (rho_cp, d_rho_cp, cond, d_cond) = self.thermal_d(t);
@@ -113,9 +122,12 @@ impl Context<'_> {
         let tm = self.jc.tm_c.min(self.material.melting_c);
         let (tol, cap) = (self.options.temperature_tolerance_c, self.options.max_bracket_iterations);
         let hint = self.hints.ab_c.get();
+        // The last Newton iterate and its rise: Newton returns the evaluated point, reused below.
+        let last = std::cell::Cell::new((f64::NAN, (0.0, 0.0, 0.0, 0.0, false)));
         let newton = |t: f64| -> Result<(f64, f64), ModelError> {
-            let (r, dr, ..) = rise(t);
-            Ok((t - tw - eta * r, 1.0 - eta * dr))
+            let r = rise(t);
+            last.set((t, r));
+            Ok((t - tw - eta * r.0, 1.0 - eta * r.1))
         };
         let start = if hint.is_finite() { hint } else { tw + 300.0 };
         let t_ab = match newton_1d(newton, start, tw, tm, tol, NEWTON_CAP) {
@@ -135,7 +147,9 @@ impl Context<'_> {
             }
         };
         self.hints.ab_c.set(t_ab);
-        let (rise_sz_c, _, k_ab_pa, beta, beta_outside) = rise(t_ab);
+        let (t_last, at_last) = last.get();
+        let (rise_sz_c, _, k_ab_pa, beta, beta_outside) =
+            if t_last.to_bits() == t_ab.to_bits() { at_last } else { rise(t_ab) };
         Ok(AbTemperature { t_ab_c: t_ab, rise_sz_c, k_ab_pa, beta, beta_outside })
     }
 
