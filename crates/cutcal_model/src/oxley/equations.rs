@@ -34,17 +34,48 @@ pub(crate) struct Context<'a> {
     pub hints: &'a TemperatureHints,
 }
 
-/// The last T_AB and T_C solved, degC (NaN when none). Only a starting point: the root is the same
-/// to the temperature tolerance whatever the hint (the bracketing fallback covers the whole interval).
+/// The last two T_AB and T_C solved with their phi, `(phi, T)` in rad and degC, newest last (NaN:
+/// none). Only a starting point: the start at a new phi is their linear extrapolation in phi, and the
+/// root is the same to the temperature tolerance whatever the start (the bracketing fallback covers
+/// the whole interval).
 #[derive(Debug)]
 pub(crate) struct TemperatureHints {
-    pub ab_c: Cell<f64>,
-    pub int_c: Cell<f64>,
+    pub ab: Cell<[(f64, f64); 2]>,
+    pub chip: Cell<[(f64, f64); 2]>,
 }
 
 impl TemperatureHints {
     pub fn none() -> Self {
-        Self { ab_c: Cell::new(f64::NAN), int_c: Cell::new(f64::NAN) }
+        Self { ab: Cell::new([(f64::NAN, f64::NAN); 2]), chip: Cell::new([(f64::NAN, f64::NAN); 2]) }
+    }
+
+    /// Forgets every hint.
+    pub fn reset(&self) {
+        self.ab.set([(f64::NAN, f64::NAN); 2]);
+        self.chip.set([(f64::NAN, f64::NAN); 2]);
+    }
+
+    /// The starting temperature at `phi` from a hint pair: linear extrapolation in phi, kept within
+    /// 200 K of the newest; the newest alone if the pair is degenerate; `fallback` without hints.
+    pub fn start(pair: [(f64, f64); 2], phi: f64, fallback: f64) -> f64 {
+        let [(p0, t0), (p1, t1)] = pair;
+        if !t1.is_finite() {
+            return fallback;
+        }
+        let t = t1 + (t1 - t0) / (p1 - p0) * (phi - p1);
+        if t.is_finite() && (t - t1).abs() <= 200.0 {
+            t
+        } else {
+            t1
+        }
+    }
+
+    /// Records a solved temperature at phi.
+    pub fn push(cell: &Cell<[(f64, f64); 2]>, phi: f64, t: f64) {
+        let [_, newest] = cell.get();
+        if newest.0.to_bits() != phi.to_bits() {
+            cell.set([newest, (phi, t)]);
+        }
     }
 }
 
@@ -252,7 +283,7 @@ impl Context<'_> {
             ));
         }
         // T_AB = T_w + eta dT_SZ (Oxley 1989, Sec. 4.3), solved in temperatures.rs.
-        let ab = self.solve_t_ab(athermal, cos_a / (sin_phi * cos_pa), tan_phi)?;
+        let ab = self.solve_t_ab(phi_rad, athermal, cos_a / (sin_phi * cos_pa), tan_phi)?;
         let (t_ab, d_t_sz, k_ab) = (ab.t_ab_c, ab.rise_sz_c, ab.k_ab_pa);
         let tm = self.jc.tm_c.min(self.material.melting_c);
         if !(k_ab > 0.0) {
@@ -304,7 +335,7 @@ impl Context<'_> {
         // Mean chip temperature T_C = T_w + dT_SZ + dT_C, dT_C = F sin(phi) / (rho Cp(T_C) t1 cos(phi - a))
         // (Oxley 1989, Sec. 4.3), solved in temperatures.rs. It does not depend on delta.
         let base = tw + d_t_sz;
-        let (t_c, d_t_c) = self.solve_t_c(base, fr * sin_phi / (t1 * cos_pa))?;
+        let (t_c, d_t_c) = self.solve_t_c(phi_rad, base, fr * sin_phi / (t1 * cos_pa))?;
         // Maximum interface rise log10(dT_M / dT_C) = 0.06 - 0.195 delta sqrt(R_T t2 / h) + 0.5 log10(R_T t2 / h),
         // with the thermal number R_T = rho Cp V t1 / K of the chip at T_C (Oxley 1989, Sec. 4.3;
         // Lalwani et al. 2009, Sec. 2), written as dT_M = dT_C 10^0.06 sqrt(R_T t2/h) exp(-0.195 ln10 sqrt(R_T t2/h) delta).

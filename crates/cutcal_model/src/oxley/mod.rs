@@ -260,8 +260,7 @@ pub fn predict_from(
         // A warm start must not change whether a solution is found: retry cold.
         Err(_) if start.is_some() => {
             let spent = solver.evaluations;
-            hints.ab_c.set(f64::NAN);
-            hints.int_c.set(f64::NAN);
+            hints.reset();
             solver = Solver::new(ctx, None);
             solver.evaluations = spent;
             solver.search_delta()?

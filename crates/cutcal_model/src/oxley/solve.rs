@@ -137,8 +137,9 @@ impl<'a> Solver<'a> {
         }
     }
 
-    /// delta in `(lo, hi)` with `d ln k_chip / d ln delta = 0` at a fixed primary zone: Newton in
-    /// ln(delta) with a central-difference slope from `hint`, else Brent on `[lo, hi]`.
+    /// delta in `(lo, hi)` with `d ln k_chip / d ln delta = 0` at a fixed primary zone: inverse
+    /// quadratic interpolation / secant in ln(delta) from `hint` ([`Pool::next`]), else Brent on
+    /// `[lo, hi]`.
     fn stationary_delta(&self, p: &PrimaryZone, hint: f64, lo: f64, hi: f64) -> Result<f64, ModelError> {
         let g = |x: f64| -> Result<f64, ModelError> {
             let v = self.ctx.chip_log_slope(p, x.exp());
@@ -150,13 +151,21 @@ impl<'a> Solver<'a> {
         };
         let (xlo, xhi) = (lo.ln(), hi.ln());
         let tol = 1e-11;
-        let newton = |x: f64| -> Result<(f64, f64), ModelError> {
-            let h = 1e-5;
-            let (gm, gp) = (g(x - h)?, g(x + h)?);
-            Ok((g(x)?, (gp - gm) / (2.0 * h)))
-        };
-        if let Some(x) = super::roots::newton_1d(newton, hint.ln(), xlo, xhi, tol, 12) {
-            return Ok(x.exp());
+        let x0 = hint.ln().clamp(xlo, xhi);
+        let mut pool = Pool::new();
+        for x in [x0, if x0 + 1e-3 <= xhi { x0 + 1e-3 } else { x0 - 1e-3 }] {
+            pool.push(x, g(x)?);
+        }
+        for _ in 0..self.ctx.options.max_bracket_iterations {
+            let Some((xb, _)) = pool.best() else { break };
+            let Some(x) = pool.next(0.5) else { break };
+            if !(x >= xlo && x <= xhi) {
+                break;
+            }
+            if (x - xb).abs() <= tol {
+                return Ok(x.exp());
+            }
+            pool.push(x, g(x)?);
         }
         let (glo, ghi) = (g(xlo)?, g(xhi)?);
         Ok(brent_root(g, xlo, xhi, glo, ghi, tol, self.ctx.options.max_bracket_iterations, "stationary delta")?.exp())

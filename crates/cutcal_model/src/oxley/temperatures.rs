@@ -9,7 +9,7 @@ use std::f64::consts::LN_10;
 
 use crate::error::ModelError;
 
-use super::equations::{Context, SQRT3};
+use super::equations::{Context, TemperatureHints, SQRT3};
 use super::roots::{brent_root, newton_1d};
 
 /// Lower end of Boothroyd's heat-partition correlation in `R_T tan(phi)` (Oxley 1989, Sec. 4.3).
@@ -104,7 +104,13 @@ impl Context<'_> {
     /// k_AB = athermal g(T_AB)/sqrt3, rho Cp, K and beta at T_AB (Oxley 1989, Sec. 4.3; Lalwani et al.
     /// 2009, Sec. 2), solved on [T_w, T_m]: Newton from the last T_AB, else Brent.
     /// `geo` is `cos(a) / (sin(phi) cos(phi - a))`.
-    pub(crate) fn solve_t_ab(&self, athermal_pa: f64, geo: f64, tan_phi: f64) -> Result<AbTemperature, ModelError> {
+    pub(crate) fn solve_t_ab(
+        &self,
+        phi_rad: f64,
+        athermal_pa: f64,
+        geo: f64,
+        tan_phi: f64,
+    ) -> Result<AbTemperature, ModelError> {
         let c = self.conditions;
         let (v, t1, tw, eta) = (c.speed_m_per_s, c.uncut_chip_thickness_m, c.work_temperature_c, self.options.eta);
         // Value of dT_SZ and its derivative in T, and the quantities reported.
@@ -121,7 +127,6 @@ impl Context<'_> {
         };
         let tm = self.jc.tm_c.min(self.material.melting_c);
         let (tol, cap) = (self.options.temperature_tolerance_c, self.options.max_bracket_iterations);
-        let hint = self.hints.ab_c.get();
         // The last Newton iterate and its rise: Newton returns the evaluated point, reused below.
         let last = std::cell::Cell::new((f64::NAN, (0.0, 0.0, 0.0, 0.0, false)));
         let newton = |t: f64| -> Result<(f64, f64), ModelError> {
@@ -129,7 +134,7 @@ impl Context<'_> {
             last.set((t, r));
             Ok((t - tw - eta * r.0, 1.0 - eta * r.1))
         };
-        let start = if hint.is_finite() { hint } else { tw + 300.0 };
+        let start = TemperatureHints::start(self.hints.ab.get(), phi_rad, tw + 300.0);
         let t_ab = match newton_1d(newton, start, tw, tm, tol, NEWTON_CAP) {
             Some(t) => t,
             None => {
@@ -146,7 +151,7 @@ impl Context<'_> {
                 brent_root(f, tw, tm, f_lo, f_hi, tol, cap, what)?
             }
         };
-        self.hints.ab_c.set(t_ab);
+        TemperatureHints::push(&self.hints.ab, phi_rad, t_ab);
         let (t_last, at_last) = last.get();
         let (rise_sz_c, _, k_ab_pa, beta, beta_outside) =
             if t_last.to_bits() == t_ab.to_bits() { at_last } else { rise(t_ab) };
@@ -158,7 +163,7 @@ impl Context<'_> {
     /// secondary-zone rise), solved on [T_w + dT_SZ, top of the property range]: Newton from the last
     /// T_C, else Brent; above the property range rho Cp is held, so the root is closed-form there.
     /// `heat_per_rho_cp` is `F sin(phi) / (t1 cos(phi - a))` (K times J/(m3 K)). Returns (T_C, dT_C).
-    pub(crate) fn solve_t_c(&self, base_c: f64, heat_per_rho_cp: f64) -> Result<(f64, f64), ModelError> {
+    pub(crate) fn solve_t_c(&self, phi_rad: f64, base_c: f64, heat_per_rho_cp: f64) -> Result<(f64, f64), ModelError> {
         let d_t_c_at = |t: f64| heat_per_rho_cp / self.thermal_d(t).0;
         let top = self.material.thermal.valid_to_c;
         let (tol, cap) = (self.options.temperature_tolerance_c, self.options.max_bracket_iterations);
@@ -170,8 +175,7 @@ impl Context<'_> {
                 let d = heat_per_rho_cp / rho_cp;
                 Ok((t - base_c - d, 1.0 + d * d_rho_cp / rho_cp))
             };
-            let hint = self.hints.int_c.get();
-            let start = if hint.is_finite() { hint } else { base_c + d_t_c_at(base_c) };
+            let start = TemperatureHints::start(self.hints.chip.get(), phi_rad, base_c + d_t_c_at(base_c));
             match newton_1d(newton, start, base_c, top, tol, NEWTON_CAP) {
                 Some(t) => t,
                 None => {
@@ -186,7 +190,7 @@ impl Context<'_> {
                 }
             }
         };
-        self.hints.int_c.set(t_c);
+        TemperatureHints::push(&self.hints.chip, phi_rad, t_c);
         Ok((t_c, d_t_c_at(t_c)))
     }
 }
