@@ -73,6 +73,7 @@
 
 mod edge;
 mod equations;
+mod existence;
 mod options;
 mod pool;
 mod roots;

@@ -37,6 +37,9 @@ pub(crate) struct Solver<'a> {
     history: [(f64, f64); 3],
     n_history: usize,
     pub multiple_phi_roots: bool,
+    /// The largest `(tau_int - m_f k_chip)/k_AB` over every phi and delta and where, (value, phi,
+    /// delta), once [`Solver::rescue`] has looked for it.
+    pub(super) best_residual: Option<(f64, f64, f64)>,
 }
 
 /// One converged point of the delta search.
@@ -57,7 +60,7 @@ pub(crate) struct DeltaSearch {
 
 /// What the secant iteration in phi solves at each phi.
 #[derive(Clone, Copy)]
-enum Target {
+pub(super) enum Target {
     /// `tau_int = m_f k_chip` at this delta.
     Delta(f64),
     /// `tau_int = m_f k_chip` at the delta where `d k_chip / d delta = 0` inside `(lo, hi)`.
@@ -76,10 +79,11 @@ impl<'a> Solver<'a> {
             history: [(f64::NAN, f64::NAN); 3],
             n_history: 0,
             multiple_phi_roots: false,
+            best_residual: None,
         }
     }
 
-    fn primary(&mut self, phi: f64) -> Result<PrimaryZone, ModelError> {
+    pub(super) fn primary(&mut self, phi: f64) -> Result<PrimaryZone, ModelError> {
         if let Some(p) = self.recent.iter().flatten().find(|p| p.phi_rad.to_bits() == phi.to_bits()) {
             return Ok(*p);
         }
@@ -126,7 +130,7 @@ impl<'a> Solver<'a> {
     }
 
     /// The state of a computed primary zone for a target.
-    fn state_for(&self, p: PrimaryZone, target: Target, hint: &mut f64) -> Result<State, ModelError> {
+    pub(super) fn state_for(&self, p: PrimaryZone, target: Target, hint: &mut f64) -> Result<State, ModelError> {
         match target {
             Target::Delta(delta) => self.ctx.state_from(p, delta),
             Target::Stationary { lo, hi } => {
@@ -140,7 +144,7 @@ impl<'a> Solver<'a> {
     /// delta in `(lo, hi)` with `d ln k_chip / d ln delta = 0` at a fixed primary zone: inverse
     /// quadratic interpolation / secant in ln(delta) from `hint` ([`Pool::next`]), else Brent on
     /// `[lo, hi]`.
-    fn stationary_delta(&self, p: &PrimaryZone, hint: f64, lo: f64, hi: f64) -> Result<f64, ModelError> {
+    pub(super) fn stationary_delta(&self, p: &PrimaryZone, hint: f64, lo: f64, hi: f64) -> Result<f64, ModelError> {
         let g = |x: f64| -> Result<f64, ModelError> {
             let v = self.ctx.chip_log_slope(p, x.exp());
             if v.is_finite() {
@@ -398,12 +402,23 @@ impl<'a> Solver<'a> {
         let Some((ib, best)) =
             grid.iter().enumerate().filter_map(|(i, p)| p.map(|p| (i, p))).min_by(|a, b| fc(&a.1).total_cmp(&fc(&b.1)))
         else {
-            return Err(ModelError::NoSolution {
-                what: "extended Oxley model: no (phi, C0) solution at any delta".into(),
-                low: dlo,
-                high: dhi,
-                detail: first_err.map_or_else(|| "no delta tried".into(), |e| e.to_string()),
-            });
+            // No scan point has a solution: the largest shear residual over every phi and delta
+            // decides whether one exists between the scan points (then it is solved) or not at all.
+            return match self.rescue()? {
+                Some(best) => Ok(DeltaSearch {
+                    best,
+                    at_bound: true,
+                    fc_change_over_band: None,
+                    poorly_determined: false,
+                    converged_share: 0.0,
+                }),
+                None => Err(ModelError::NoSolution {
+                    what: "extended Oxley model: no (phi, C0) solution at any delta".into(),
+                    low: dlo,
+                    high: dhi,
+                    detail: self.no_solution_reason(first_err),
+                }),
+            };
         };
         let left = if ib > 0 { grid[ib - 1] } else { None };
         let right = grid.get(ib + 1).copied().flatten();
