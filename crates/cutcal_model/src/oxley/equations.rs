@@ -86,8 +86,6 @@ impl TemperatureHints {
 pub(crate) struct ChipHeat {
     /// T_w + dT_SZ, degC.
     pub base_c: f64,
-    /// Mean chip temperature T_C, degC.
-    pub chip_temperature_c: f64,
     /// psi dT_C 10^0.06 sqrt(R_T t2/h), K.
     pub amplitude_c: f64,
     /// 0.195 ln(10) sqrt(R_T t2/h).
@@ -104,11 +102,9 @@ pub(crate) struct PrimaryZone {
     pub phi_rad: f64,
     pub c0: f64,
     pub shear_plane_length_m: f64,
-    pub chip_velocity_m_per_s: f64,
     pub strain: f64,
     pub strain_rate_per_s: f64,
     pub temperature_c: f64,
-    pub temperature_rise_sz_c: f64,
     pub shear_flow_stress_pa: f64,
     pub heat_partition: f64,
     pub beta_outside_correlation: bool,
@@ -345,7 +341,6 @@ impl Context<'_> {
         let gr_sqrt = (rho_cp * v * t1 / cond * t2 / h).sqrt();
         let chip = ChipHeat {
             base_c: base,
-            chip_temperature_c: t_c,
             amplitude_c: self.options.psi * d_t_c * TEN_POW_0_06 * gr_sqrt,
             decay: 0.195 * LN_10 * gr_sqrt,
             strain_coef: 0.5 * h / (SQRT3 * t2),
@@ -355,11 +350,9 @@ impl Context<'_> {
             phi_rad,
             c0,
             shear_plane_length_m: l_ab,
-            chip_velocity_m_per_s: v_c,
             strain,
             strain_rate_per_s: strain_rate,
             temperature_c: t_ab,
-            temperature_rise_sz_c: d_t_sz,
             shear_flow_stress_pa: k_ab,
             heat_partition: ab.beta,
             beta_outside_correlation: ab.beta_outside,

@@ -45,7 +45,21 @@ impl Solver<'_> {
         let [lo, hi] = o.phi_range_rad;
         let n = 4 * o.phi_scan_points;
         let phis: Vec<f64> = (0..n).map(|i| lo + (hi - lo) * i as f64 / (n - 1) as f64).collect();
-        let r: Vec<Option<f64>> = phis.iter().map(|&phi| self.envelope(phi).ok().map(|s| s.residual_shear)).collect();
+        let mut r: Vec<Option<f64>> = Vec::with_capacity(n);
+        for &phi in &phis {
+            match self.envelope(phi) {
+                Ok(s) => r.push(Some(s.residual_shear)),
+                Err(e) => {
+                    // Keep the count and one reason, preferring a C0 outside its range.
+                    let msg = e.to_string();
+                    let c0_range = msg.contains("strain-rate constant C0");
+                    let (count, kept) = self.inadmissible.take().unwrap_or((0, String::new()));
+                    let keep_new = kept.is_empty() || (c0_range && !kept.contains("strain-rate constant C0"));
+                    self.inadmissible = Some((count + 1, if keep_new { msg } else { kept }));
+                    r.push(None);
+                }
+            }
+        }
         let Some((imax, rmax)) =
             r.iter().enumerate().filter_map(|(i, v)| v.map(|v| (i, v))).max_by(|a, b| a.1.total_cmp(&b.1))
         else {
@@ -96,24 +110,36 @@ impl Solver<'_> {
         let (rho_cp, k) = self.ctx.thermal(c.work_temperature_c);
         let rt = rho_cp * c.speed_m_per_s * c.uncut_chip_thickness_m / k;
         let first = first_err.map_or_else(String::new, |e| e.to_string());
+        let inadmissible = match &self.inadmissible {
+            Some((count, e)) => format!(
+                " At {count} of the {} phi grid points no state is admissible, e.g. {e}.",
+                4 * self.ctx.options.phi_scan_points
+            ),
+            None => String::new(),
+        };
         match self.best_residual {
             Some((r, phi, delta)) if r < 0.0 => {
                 let [_, d_hi] = self.ctx.options.delta_range;
                 let thick = if delta >= d_hi * (1.0 - 1e-9) {
                     format!(
-                        "; k_chip is least at the top of the delta range: only a secondary zone thicker than                          {d_hi} of the chip, outside the thin-zone assumption of the model, could soften it enough"
+                        " k_chip is least at the top of the delta range: only a secondary zone thicker than \
+                         {d_hi} of the chip, outside the thin-zone assumption of the model, could soften it enough."
                     )
                 } else {
                     String::new()
                 };
                 format!(
-                    "tau_int < k_chip everywhere: the largest (tau_int - k_chip)/k_AB over every phi in the range (C0                      from sigma_N = sigma_N') and every delta in the range is {r:.4}, at phi {:.2} deg and delta                      {delta:.4}. The friction stress the force system carries stays below the chip's flow stress at                      the interface, which is too cold to soften at this thermal number R_T = {rt:.2} (low V t1):                      Oxley's sticking-interface condition has no solution here{thick}",
+                    "tau_int < k_chip everywhere: the largest (tau_int - k_chip)/k_AB over every admissible phi in \
+                     the range (C0 from sigma_N = sigma_N') and every delta in the range is {r:.4}, at phi {:.2} deg \
+                     and delta {delta:.4}. The friction stress the force system carries stays below the chip's \
+                     flow stress at the interface, which is too cold to soften at this thermal number \
+                     R_T = {rt:.2}: Oxley's sticking-interface condition has no solution here.{thick}{inadmissible}",
                     phi.to_degrees()
                 )
             }
             _ => format!(
                 "no admissible state (phi, C0 from sigma_N = sigma_N') solves tau_int = k_chip at any delta \
-                 (thermal number R_T = {rt:.2}); first scan failure: {first}"
+                 (thermal number R_T = {rt:.2}).{inadmissible} First scan failure: {first}"
             ),
         }
     }

@@ -40,6 +40,8 @@ pub(crate) struct Solver<'a> {
     /// The largest `(tau_int - m_f k_chip)/k_AB` over every phi and delta and where, (value, phi,
     /// delta), once [`Solver::rescue`] has looked for it.
     pub(super) best_residual: Option<(f64, f64, f64)>,
+    /// How many phi of that search had no admissible state, and one reason.
+    pub(super) inadmissible: Option<(usize, String)>,
 }
 
 /// One converged point of the delta search.
@@ -80,6 +82,7 @@ impl<'a> Solver<'a> {
             n_history: 0,
             multiple_phi_roots: false,
             best_residual: None,
+            inadmissible: None,
         }
     }
 
@@ -94,8 +97,16 @@ impl<'a> Solver<'a> {
         Ok(p)
     }
 
+    /// Puts a computed primary zone into the ring of recent ones (if not there).
+    fn keep(&mut self, p: PrimaryZone) {
+        if self.recent.iter().flatten().all(|q| q.phi_rad.to_bits() != p.phi_rad.to_bits()) {
+            self.recent[self.next_slot] = Some(p);
+            self.next_slot = (self.next_slot + 1) % RECENT;
+        }
+    }
+
     /// phi at `delta` extrapolated (Lagrange, in ln delta) from the last solutions; `None` without
-    /// history or when it moves more than [`MAX_PHI_STEP`] from the last solution.
+    /// history or when it moves more than 3 [`MAX_PHI_STEP`] from the last solution.
     fn predict_phi(&self, delta: f64) -> Option<f64> {
         let h = &self.history[3 - self.n_history..];
         let (x, last) = (delta.ln(), h.last()?.1);
@@ -109,7 +120,7 @@ impl<'a> Solver<'a> {
             }
             phi += w * pi;
         }
-        (phi.is_finite() && (phi - last).abs() <= MAX_PHI_STEP).then_some(phi)
+        (phi.is_finite() && (phi - last).abs() <= 3.0 * MAX_PHI_STEP).then_some(phi)
     }
 
     fn remember(&mut self, delta: f64, phi: f64) {
@@ -180,7 +191,7 @@ impl<'a> Solver<'a> {
     /// interpolation / secant steps ([`Pool::next`]), each limited to 0.1 rad and kept in the phi
     /// range. `None` when it leaves the admissible states, stops decreasing the residual or reaches
     /// the cap (the caller then brackets).
-    fn secant(&mut self, phi0: f64, target: Target, hint: &mut f64) -> Option<State> {
+    fn secant(&mut self, phi0: f64, target: Target, hint: &mut f64, trust_start: bool) -> Option<State> {
         let o = self.ctx.options;
         let [lo, hi] = o.phi_range_rad;
         let tol = o.residual_tolerance;
@@ -190,7 +201,7 @@ impl<'a> Solver<'a> {
         // The two most recent primary zones (the end of the last root search).
         for k in 1..=2 {
             let Some(p) = self.recent[(self.next_slot + RECENT - k) % RECENT] else { continue };
-            if (p.phi_rad - x0).abs() > MAX_PHI_STEP {
+            if (p.phi_rad - x0).abs() > 3.0 * MAX_PHI_STEP {
                 continue;
             }
             if let Ok(s) = self.state_for(p, target, hint) {
@@ -203,9 +214,9 @@ impl<'a> Solver<'a> {
         if found.is_some() {
             return found;
         }
-        // With two cached points the first step is Newton's with the exact slope at this target;
-        // otherwise start at phi0.
-        if pool.len() < 2 {
+        // phi0 is evaluated when it is a prediction (`trust_start`) or fewer than two cached points
+        // are near; otherwise the first step is Newton's with the exact slope at this target.
+        if pool.len() < 2 || trust_start {
             if let Ok(s) = self.eval(x0, target, hint) {
                 if s.residual_norm() < tol {
                     return Some(s);
@@ -308,7 +319,7 @@ impl<'a> Solver<'a> {
             return Ok(s);
         }
         // Brent stops on the bracket width; polish the residual with the secant from there.
-        self.secant(phi, target, &mut unused).ok_or_else(|| ModelError::NoConvergence {
+        self.secant(phi, target, &mut unused, true).ok_or_else(|| ModelError::NoConvergence {
             what: format!("Oxley shear angle (tau_int = k_chip) at delta {delta:.4}"),
             iterations: o.max_newton_iterations,
             last_change: s.residual_norm(),
@@ -349,9 +360,10 @@ impl<'a> Solver<'a> {
         // Cold start: phi = 22 deg + 0.8 alpha (a rough fit to Lalwani et al. 2009's AISI 1045
         // solutions; only a starting point).
         let alpha = self.ctx.conditions.rake_rad;
-        let guess = self.predict_phi(delta).or(self.last).unwrap_or(22f64.to_radians() + 0.8 * alpha);
+        let predicted = self.predict_phi(delta);
+        let guess = predicted.or(self.last).unwrap_or(22f64.to_radians() + 0.8 * alpha);
         let mut unused = delta;
-        let s = match self.secant(guess, Target::Delta(delta), &mut unused) {
+        let s = match self.secant(guess, Target::Delta(delta), &mut unused, predicted.is_some()) {
             Some(s) => s,
             None => self.scan_root(delta)?,
         };
@@ -428,7 +440,8 @@ impl<'a> Solver<'a> {
         if let (Some(l), Some(r), None) = (left, right, o.delta_grid_step) {
             let mut hint = best.delta;
             let phi0 = best.state.primary.phi_rad;
-            if let Some(s) = self.secant(phi0, Target::Stationary { lo: l.delta, hi: r.delta }, &mut hint) {
+            self.keep(best.state.primary);
+            if let Some(s) = self.secant(phi0, Target::Stationary { lo: l.delta, hi: r.delta }, &mut hint, true) {
                 let p = DeltaPoint { delta: s.interface.delta, state: s };
                 if p.delta > l.delta && p.delta < r.delta && fc(&p) <= fc(&best) * (1.0 + 1e-12) {
                     best = p;
@@ -460,6 +473,10 @@ impl<'a> Solver<'a> {
         }
         // Flatness: Fc at delta*(1 -/+ band) against Fc(delta*).
         let mut change: Option<f64> = None;
+        // The probes start at the minimum (phi is stationary in delta there).
+        self.n_history = 0;
+        self.remember(best.delta, best.state.primary.phi_rad);
+        self.keep(best.state.primary);
         for factor in [1.0 - o.delta_flat_band, 1.0 + o.delta_flat_band] {
             let d = best.delta * factor;
             if d < dlo || d > dhi {
