@@ -59,7 +59,7 @@ impl Pool {
         let (x0, f0) = s[0];
         if self.n >= 3 {
             let ((x1, f1), (x2, f2)) = (s[1], s[2]);
-            if f0 != f1 && f0 != f2 && f1 != f2 {
+            if f0 - f1 != 0.0 && f0 - f2 != 0.0 && f1 - f2 != 0.0 {
                 // Lagrange interpolation of x as a function of f, at f = 0.
                 let x = x0 * f1 * f2 / ((f0 - f1) * (f0 - f2))
                     + x1 * f0 * f2 / ((f1 - f0) * (f1 - f2))
