@@ -434,10 +434,25 @@ impl<'a> Solver<'a> {
         };
         let left = if ib > 0 { grid[ib - 1] } else { None };
         let right = grid.get(ib + 1).copied().flatten();
-        let at_bound = left.is_none() || right.is_none();
+        let mut at_bound = left.is_none() || right.is_none();
         let mut best = best;
         let mut refined = false;
-        if let (Some(l), Some(r), None) = (left, right, o.delta_grid_step) {
+        if at_bound && o.delta_grid_step.is_none() {
+            // The minimum sits next to a delta without solution or on a bound of the range, where
+            // which phi root the scan follows depends on its path (several roots at low V t1).
+            // The feasible phi form an interval whose ends are the extremes of phi over every
+            // solution (`Solver::rescue`); Fc depends on phi only, so the least Fc over every delta
+            // is at one of them: take it when it is lower.
+            if let Ok(Some(p)) = self.rescue() {
+                if fc(&p) < fc(&best) {
+                    best = p;
+                    refined = true;
+                    // Every phi and delta of the ranges was searched: only a range bound is a bound.
+                    at_bound = p.delta <= dlo * (1.0 + 1e-9) || p.delta >= dhi * (1.0 - 1e-9);
+                }
+            }
+        }
+        if let (Some(l), Some(r), None, false) = (left, right, o.delta_grid_step, refined) {
             let mut hint = best.delta;
             let phi0 = best.state.primary.phi_rad;
             self.keep(best.state.primary);
