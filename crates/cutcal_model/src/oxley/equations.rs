@@ -396,7 +396,7 @@ impl Context<'_> {
 
     /// `d ln k_chip / d ln delta` at fixed primary zone: the derivative of the closed form of
     /// [`Context::interface`] (JC law, paper Eqs 14 and 16, differentiated term by term; the rate term
-    /// is 1 with zero slope at or below eps0). Zero where Fc(delta) is stationary (see solve.rs).
+    /// is 1 with zero slope at or below eps0). Zero where Fc(delta) is stationary (see minimum.rs).
     pub fn chip_log_slope(&self, p: &PrimaryZone, delta: f64) -> f64 {
         let (jc, ch) = (self.jc, &p.chip);
         let strain = 2.0 * p.strain + ch.strain_coef / delta;

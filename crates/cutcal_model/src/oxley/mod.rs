@@ -75,6 +75,7 @@
 mod edge;
 mod equations;
 mod existence;
+mod minimum;
 mod options;
 mod pool;
 mod roots;
