@@ -37,6 +37,9 @@ impl Solver<'_> {
         let n = deltas.len();
         let mut grid: Vec<Option<DeltaPoint>> = Vec::with_capacity(n);
         let mut first_err = None;
+        // Scan points only order the scan and bracket the minimum: certified brackets suffice
+        // (continuous delta only; the lalwani preset returns a scan point as it is).
+        self.scanning = o.delta_grid_step.is_none();
         for &delta in &deltas {
             match self.solve_at(delta) {
                 Ok(state) => grid.push(Some(DeltaPoint { delta, state })),
@@ -46,6 +49,7 @@ impl Solver<'_> {
                 }
             }
         }
+        self.scanning = false;
         let ok = grid.iter().flatten().count();
         let fc = |p: &DeltaPoint| p.state.primary.cutting_force_n_per_m;
         let Some((ib, best)) =
@@ -95,7 +99,8 @@ impl Solver<'_> {
             self.keep(best.state.primary);
             if let Some(s) = self.secant(phi0, Target::Stationary { lo: l.delta, hi: r.delta }, &mut hint, true) {
                 let p = DeltaPoint { delta: s.interface.delta, state: s };
-                if p.delta > l.delta && p.delta < r.delta && fc(&p) <= fc(&best) * (1.0 + 1e-12) {
+                // (1e-5: the scan point's Fc is known to about 1e-6, see solve.rs SCAN_RESIDUAL.)
+                if p.delta > l.delta && p.delta < r.delta && fc(&p) <= fc(&best) * (1.0 + 1e-5) {
                     best = p;
                     refined = true;
                 }
@@ -122,6 +127,11 @@ impl Solver<'_> {
             } else if fc(&found) < fc(&best) {
                 best = found;
             }
+        }
+        // A scan point returned as the answer is solved to the residual tolerance.
+        if best.state.residual_norm() >= o.residual_tolerance {
+            self.last = Some(best.state.primary.phi_rad);
+            best = DeltaPoint { delta: best.delta, state: self.solve_at(best.delta)? };
         }
         // Flatness: Fc at delta*(1 -/+ band) against Fc(delta*).
         let mut change: Option<f64> = None;

@@ -42,6 +42,12 @@ impl Pool {
         s
     }
 
+    /// Whether a point within `width` of `x` has f of the opposite sign to `fx` (a certified
+    /// bracket of a root, by continuity).
+    pub fn brackets(&self, x: f64, fx: f64, width: f64) -> bool {
+        self.pts[..self.n].iter().any(|&(xi, fi)| (xi - x).abs() <= width && (fi > 0.0) != (fx > 0.0))
+    }
+
     /// The point with the smallest |f|.
     pub fn best(&self) -> Option<(f64, f64)> {
         (self.n > 0).then(|| self.sorted()[0])

@@ -15,6 +15,15 @@ use super::roots::brent_root;
 /// Largest phi step of the secant iteration, rad.
 const MAX_PHI_STEP: f64 = 0.05;
 
+/// A scan point (it only orders the scan and brackets the minimum; never an output) is accepted at
+/// this shear residual when a point of the other sign within [`SCAN_BRACKET`] certifies the root or
+/// the secant step to the root is below 1e-6 rad: its phi is then within about 1e-6 rad of the root,
+/// so its Fc orders the scan points to about 1e-6. Outputs are always solved to the residual tolerance.
+const SCAN_RESIDUAL: f64 = 1e-6;
+
+/// Width of the certifying bracket of a scan point, rad.
+const SCAN_BRACKET: f64 = 0.01;
+
 /// Primary zones kept for reuse.
 const RECENT: usize = 4;
 
@@ -41,6 +50,9 @@ pub(crate) struct Solver<'a> {
     pub(super) best_residual: Option<(f64, f64, f64)>,
     /// How many phi of that search had no admissible state, and one reason.
     pub(super) inadmissible: Option<(usize, String)>,
+    /// While true (the continuous delta scan), [`Solver::secant`] accepts a certified bracket with
+    /// a residual below [`SCAN_RESIDUAL`].
+    pub(super) scanning: bool,
 }
 
 /// One converged point of the delta search.
@@ -82,6 +94,7 @@ impl<'a> Solver<'a> {
             multiple_phi_roots: false,
             best_residual: None,
             inadmissible: None,
+            scanning: false,
         }
     }
 
@@ -244,7 +257,11 @@ impl<'a> Solver<'a> {
                 return None;
             }
             let s = self.eval(x, target, hint).ok()?;
-            if s.residual_norm() < tol {
+            let slope_here = (s.residual_shear - rb) / (x - xb);
+            let certified = self.scanning
+                && s.residual_shear.abs() < SCAN_RESIDUAL
+                && (pool.brackets(x, s.residual_shear, SCAN_BRACKET) || (s.residual_shear / slope_here).abs() < 1e-6);
+            if s.residual_norm() < tol || certified {
                 let slope = (s.residual_shear - rb) / (x - xb);
                 if slope.is_finite() && slope != 0.0 {
                     self.slope = Some(slope);
