@@ -1,5 +1,7 @@
-//! The closed-form relations of the extended Oxley model at a given (phi, C0, delta), with the two
-//! temperature fixed points solved by bracketed root finding (never an unbounded loop).
+//! The closed-form relations of the extended Oxley model: the primary zone at a shear angle phi
+//! (with C0 from the closed-form sigma_N balance, which does not depend on delta), its chip
+//! temperature, and the tool-chip interface at any delta in closed form from them. The two
+//! temperature fixed points are in `temperatures.rs`.
 //!
 //! Sources: Oxley, *Mechanics of Machining* (1989), Ch. 4 (the parallel-sided primary zone, the
 //! tool-chip interface, the temperature models); Lalwani, Mehta & Jain 2009, Sec. 2 (the same
@@ -7,19 +9,18 @@
 //! cited by quantity and section; the symbols follow Lalwani et al. 2009.
 
 use std::cell::Cell;
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, LN_10};
 
 use crate::error::ModelError;
 use crate::jc::JcParams;
 use crate::material::Material;
 
 use super::options::{CuttingConditions, OxleyOptions, Physics};
-use super::roots::brent_root;
 
-const SQRT3: f64 = 1.732_050_807_568_877_2;
+pub(crate) const SQRT3: f64 = 1.732_050_807_568_877_2;
 
-/// Lower end of Boothroyd's heat-partition correlation in `R_T tan(phi)` (Oxley 1989, Sec. 4.3).
-const BETA_CORRELATION_LOW: f64 = 0.04;
+/// 10^0.06, the constant of Oxley's interface-temperature relation (Oxley 1989, Sec. 4.3).
+const TEN_POW_0_06: f64 = 1.148_153_621_496_882_8;
 
 /// Everything the relations need, borrowed.
 #[derive(Clone, Copy)]
@@ -29,56 +30,70 @@ pub(crate) struct Context<'a> {
     pub conditions: &'a CuttingConditions,
     pub options: &'a OxleyOptions,
     pub physics: &'a Physics,
-    /// Last temperatures solved (NaN: none), used to try a narrow bracket first.
+    /// Last temperatures solved (NaN: none), the starting points of the Newton solves.
     pub hints: &'a TemperatureHints,
 }
 
-/// The last T_AB and T_int solved, degC (NaN when none). Only a search window: a narrow bracket
-/// around the hint is tried first and the full bracket is used when it does not change sign.
+/// The last two T_AB and T_C solved with their phi, `(phi, T)` in rad and degC, newest last (NaN:
+/// none). Only a starting point: the start at a new phi is their linear extrapolation in phi, and the
+/// root is the same to the temperature tolerance whatever the start (the bracketing fallback covers
+/// the whole interval).
 #[derive(Debug)]
 pub(crate) struct TemperatureHints {
-    pub ab_c: Cell<f64>,
-    pub int_c: Cell<f64>,
+    pub ab: Cell<[(f64, f64); 2]>,
+    pub chip: Cell<[(f64, f64); 2]>,
 }
 
 impl TemperatureHints {
     pub fn none() -> Self {
-        Self { ab_c: Cell::new(f64::NAN), int_c: Cell::new(f64::NAN) }
+        Self { ab: Cell::new([(f64::NAN, f64::NAN); 2]), chip: Cell::new([(f64::NAN, f64::NAN); 2]) }
+    }
+
+    /// Forgets every hint.
+    pub fn reset(&self) {
+        self.ab.set([(f64::NAN, f64::NAN); 2]);
+        self.chip.set([(f64::NAN, f64::NAN); 2]);
+    }
+
+    /// The starting temperature at `phi` from a hint pair: linear extrapolation in phi, kept within
+    /// 200 K of the newest; the newest alone if the pair is degenerate; `fallback` without hints.
+    pub fn start(pair: [(f64, f64); 2], phi: f64, fallback: f64) -> f64 {
+        let [(p0, t0), (p1, t1)] = pair;
+        if !t1.is_finite() {
+            return fallback;
+        }
+        let t = t1 + (t1 - t0) / (p1 - p0) * (phi - p1);
+        if t.is_finite() && (t - t1).abs() <= 200.0 {
+            t
+        } else {
+            t1
+        }
+    }
+
+    /// Records a solved temperature at phi.
+    pub fn push(cell: &Cell<[(f64, f64); 2]>, phi: f64, t: f64) {
+        let [_, newest] = cell.get();
+        if newest.0.to_bits() != phi.to_bits() {
+            cell.set([newest, (phi, t)]);
+        }
     }
 }
 
-/// Secant iteration from a hint (and the hint + 1 degC), kept inside `[lo, hi]`; `None` if it leaves
-/// the interval, stalls or does not converge in 12 steps (the caller then brackets the whole
-/// interval with Brent). The residuals solved here are increasing and nearly linear in T, so the
-/// secant converges in a few steps; the root is the same to `tol` whatever the hint.
-fn try_hint<F>(mut f: F, hint: f64, lo: f64, hi: f64, tol: f64) -> Option<f64>
-where
-    F: FnMut(f64) -> Result<f64, ModelError>,
-{
-    if !hint.is_finite() || !(hi > lo) {
-        return None;
-    }
-    let mut x0 = hint.clamp(lo, hi);
-    let mut x1 = if x0 + 1.0 <= hi { x0 + 1.0 } else { x0 - 1.0 };
-    let mut f0 = f(x0).ok()?;
-    let mut f1 = f(x1).ok()?;
-    for _ in 0..12 {
-        let df = f1 - f0;
-        if !(df.is_finite() && df != 0.0) {
-            return None;
-        }
-        let x2 = x1 - f1 * (x1 - x0) / df;
-        if !(x2 >= lo && x2 <= hi) {
-            return None;
-        }
-        if (x2 - x1).abs() <= tol {
-            return Some(x2);
-        }
-        (x0, f0) = (x1, f1);
-        x1 = x2;
-        f1 = f(x1).ok()?;
-    }
-    None
+/// The delta-independent part of the tool-chip interface, fixed by the primary zone:
+/// `T_int(delta) = base + amplitude exp(-decay delta)`, `eps_int = 2 eps_AB + strain_coef/delta`,
+/// `epsdot_int = rate_coef/delta`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ChipHeat {
+    /// T_w + dT_SZ, degC.
+    pub base_c: f64,
+    /// psi dT_C 10^0.06 sqrt(R_T t2/h), K.
+    pub amplitude_c: f64,
+    /// 0.195 ln(10) sqrt(R_T t2/h).
+    pub decay: f64,
+    /// 0.5 h / (sqrt3 t2).
+    pub strain_coef: f64,
+    /// V_c / (sqrt3 t2), 1/s.
+    pub rate_coef_per_s: f64,
 }
 
 /// The primary zone and the force system at (phi, C0).
@@ -87,11 +102,9 @@ pub(crate) struct PrimaryZone {
     pub phi_rad: f64,
     pub c0: f64,
     pub shear_plane_length_m: f64,
-    pub chip_velocity_m_per_s: f64,
     pub strain: f64,
     pub strain_rate_per_s: f64,
     pub temperature_c: f64,
-    pub temperature_rise_sz_c: f64,
     pub shear_flow_stress_pa: f64,
     pub heat_partition: f64,
     pub beta_outside_correlation: bool,
@@ -107,6 +120,8 @@ pub(crate) struct PrimaryZone {
     pub contact_length_m: f64,
     /// sigma_N' from the stress distribution along AB, Pa.
     pub model_normal_stress_pa: f64,
+    /// What the interface needs, fixed by this primary zone.
+    pub chip: ChipHeat,
 }
 
 /// The secondary (tool-chip) zone at delta.
@@ -143,15 +158,8 @@ impl Context<'_> {
     /// Volumetric heat capacity and conductivity at `temperature_c`, evaluated with the temperature
     /// clamped to the material's stated validity range (the fits are not extrapolated).
     pub(crate) fn thermal(&self, temperature_c: f64) -> (f64, f64) {
-        let th = &self.material.thermal;
-        let t = temperature_c.clamp(th.valid_from_c, th.valid_to_c);
-        (th.rho_cp.value(t), th.conductivity.value(t))
-    }
-
-    /// The JC softening term `1 - T*^m` at `T_w + kappa_T (T - T_w)` (the thermal-softening hook).
-    fn softening(&self, temperature_c: f64) -> f64 {
-        let tw = self.conditions.work_temperature_c;
-        self.jc.softening(tw + self.physics.thermal_softening_scale * (temperature_c - tw))
+        let (rho_cp, _, k, _) = self.thermal_d(temperature_c);
+        (rho_cp, k)
     }
 
     /// Johnson-Cook flow stress with the thermal-softening hook: evaluated at
@@ -162,48 +170,107 @@ impl Context<'_> {
         self.jc.flow_stress(strain, strain_rate_per_s, t)
     }
 
-    /// Boothroyd's heat partition into the work (Oxley 1989, Sec. 4.3):
-    /// `beta = 0.5 - 0.35 log10(R_T tan phi)` for `0.04 <= R_T tan phi <= 10`,
-    /// `beta = 0.3 - 0.15 log10(R_T tan phi)` above 10, with the thermal number
-    /// `R_T = rho Cp V t1 / K`. Below 0.04 the value at 0.04 is used and flagged.
-    /// Takes `x = R_T tan(phi)`; returns `(beta scaled by the M6 hook and clamped to [0, 1],
-    /// outside-correlation flag)`.
-    fn heat_partition_tan(&self, x: f64) -> (f64, bool) {
-        let (beta, outside) = if x < BETA_CORRELATION_LOW {
-            (0.5 - 0.35 * BETA_CORRELATION_LOW.log10(), true)
-        } else if x <= 10.0 {
-            (0.5 - 0.35 * x.log10(), false)
-        } else {
-            (0.3 - 0.15 * x.log10(), false)
+    /// C0 solving the normal-stress condition `sigma_N = N/(h w) = sigma_N'` at phi, in closed form.
+    ///
+    /// With `u = C0 n_eq`, `tan(theta) = T0 - u`, `T0 = 1 + 2 (pi/4 - phi)`, `psi = phi - a` and
+    /// `K = 1 + pi/2 - 2a`, the relations of Oxley 1989 Sec. 4.2 / Lalwani et al. 2009 Sec. 2
+    /// (N = k_AB l_AB cos(lambda)/cos(theta), h = t1 sin(theta)/(cos(lambda) sin(phi)) (1 + u/(3 tan theta)),
+    /// sigma_N' = k_AB (K - 2u), lambda = theta - psi) give, with k_AB cancelling,
+    /// `N/(h w k_AB) = 3 (cos psi + tan(theta) sin psi)^2 / (3 tan(theta) + u)`, so the condition is the
+    /// quadratic `3 (A - u sin psi)^2 + (2u - K)(3 T0 - 2u) = 0`, `A = cos psi + T0 sin psi`
+    /// (derivation in docs/oxley.md). It does not depend on delta or on any temperature.
+    /// Of the roots with C0 in the range and an admissible geometry (0 < lambda < 90 deg, h > 0),
+    /// the smaller C0 is returned.
+    pub fn c0_for_phi(&self, phi_rad: f64, n_eq: f64, s_psi: f64, c_psi: f64) -> Result<f64, ModelError> {
+        let alpha = self.conditions.rake_rad;
+        let [clo, chi] = self.options.c0_range;
+        let what =
+            || format!("Oxley strain-rate constant C0 (sigma_N = sigma_N') at phi {:.3} deg", phi_rad.to_degrees());
+        if !(n_eq > 0.0) {
+            return Err(ModelError::NoSolution {
+                what: what(),
+                low: clo,
+                high: chi,
+                detail: "n_eq = 0: the normal-stress balance does not depend on C0 (no strain hardening)".into(),
+            });
+        }
+        let t0 = 1.0 + 2.0 * (FRAC_PI_4 - phi_rad);
+        let k = 1.0 + FRAC_PI_2 - 2.0 * alpha;
+        let a = c_psi + t0 * s_psi;
+        let (a2, a1, a0) =
+            (3.0 * s_psi * s_psi - 4.0, 6.0 * t0 - 6.0 * a * s_psi + 2.0 * k, 3.0 * a * a - 3.0 * k * t0);
+        let disc = a1 * a1 - 4.0 * a2 * a0;
+        if !(disc >= 0.0) {
+            return Err(ModelError::NoSolution {
+                what: what(),
+                low: clo,
+                high: chi,
+                detail: "the normal-stress balance has no real root in C0 n_eq at this phi".into(),
+            });
+        }
+        // Stable quadratic roots (a2 < 0 always, so the quadratic never degenerates).
+        let q = -0.5 * (a1 + disc.sqrt().copysign(a1));
+        let roots = [q / a2, if q == 0.0 { f64::NAN } else { a0 / q }];
+        let admissible = |u: f64| -> bool {
+            let c0 = u / n_eq;
+            let tan_theta = t0 - u;
+            let lambda = tan_theta.atan() - phi_rad + alpha;
+            // h > 0: sin(theta) has the sign of tan(theta) and cos(lambda) > 0 here.
+            let h_factor = (3.0 * tan_theta + u) / 3.0;
+            c0 >= clo && c0 <= chi && lambda > 0.0 && lambda < FRAC_PI_2 && h_factor > 0.0
         };
-        ((beta * self.physics.heat_partition_scale).clamp(0.0, 1.0), outside)
+        let best = roots.iter().copied().filter(|u| u.is_finite() && admissible(*u)).map(|u| u / n_eq).reduce(f64::min);
+        best.ok_or_else(|| {
+            let shown: Vec<String> =
+                roots.iter().filter(|u| u.is_finite()).map(|u| format!("{:.3}", u / n_eq)).collect();
+            ModelError::NoSolution {
+                what: what(),
+                low: clo,
+                high: chi,
+                detail: format!(
+                    "the balance needs C0 = {} (closed form), outside the range or inadmissible",
+                    shown.join(" or ")
+                ),
+            }
+        })
     }
 
-    /// The primary zone and the force system at (phi, C0).
+    /// The primary zone, the force system and the chip temperature at phi, with C0 from
+    /// [`Context::c0_for_phi`] (the only C0 that satisfies the normal-stress condition there).
     ///
-    /// Returns an error if the state is non-physical (a non-positive flow stress at the work
-    /// temperature, a friction angle outside (0, 90) deg, a non-positive contact length) or the
-    /// temperature at AB reaches melting with thermal softening switched off.
-    pub fn primary(&self, phi_rad: f64, c0: f64) -> Result<PrimaryZone, ModelError> {
+    /// Returns an error if no C0 in the range satisfies it, if the state is non-physical (a
+    /// non-positive flow stress at the work temperature, a friction angle outside (0, 90) deg, a
+    /// non-positive contact length) or the temperature at AB reaches melting with thermal softening
+    /// switched off.
+    pub fn primary(&self, phi_rad: f64) -> Result<PrimaryZone, ModelError> {
         let c = self.conditions;
         let (alpha, v, t1, tw) = (c.rake_rad, c.speed_m_per_s, c.uncut_chip_thickness_m, c.work_temperature_c);
-        let sin_phi = phi_rad.sin();
-        let cos_pa = (phi_rad - alpha).cos();
+        // sin/cos of phi, alpha and phi - alpha (angle addition; no repeated trigonometric calls).
+        let (sin_phi, cos_phi) = phi_rad.sin_cos();
+        let (sin_a, cos_a) = alpha.sin_cos();
+        let cos_pa = cos_phi * cos_a + sin_phi * sin_a;
+        let sin_pa = sin_phi * cos_a - cos_phi * sin_a;
+        // Strain at AB: gamma_AB = cos(alpha) / (2 sin(phi) cos(phi - alpha)), eps_AB = gamma_AB / sqrt(3)
+        // (Lalwani et al. 2009, Sec. 2).
+        let gamma_ab = cos_a / (2.0 * sin_phi * cos_pa);
+        let strain = gamma_ab / SQRT3;
+        // Equivalent hardening index n_eq = n B eps^n / (A + B eps^n) (Lalwani et al. 2009, Sec. 2).
+        let b_en = self.jc.b_pa * strain.powf(self.jc.n);
+        let hard = self.jc.a_pa + b_en;
+        let n_eq = if strain > 0.0 && hard > 0.0 { self.jc.n * b_en / hard } else { 0.0 };
+        let c0 = self.c0_for_phi(phi_rad, n_eq, sin_pa, cos_pa)?;
         // Shear-plane length l_AB = t1 / sin(phi) (Lalwani et al. 2009, Sec. 2).
         let l_ab = t1 / sin_phi;
         // Shear velocity V_s = V cos(alpha)/cos(phi - alpha); chip velocity V_c = V sin(phi)/cos(phi - alpha)
         // (Oxley 1989, Sec. 4.2, hodograph).
-        let v_s = v * alpha.cos() / cos_pa;
+        let v_s = v * cos_a / cos_pa;
         let v_c = v * sin_phi / cos_pa;
-        // Strain and strain rate at AB: gamma_AB = cos(alpha) / (2 sin(phi) cos(phi - alpha)),
-        // eps_AB = gamma_AB / sqrt(3); epsdot_AB = C0 V_s / (sqrt(3) l_AB) (Lalwani et al. 2009, Sec. 2).
-        let gamma_ab = alpha.cos() / (2.0 * sin_phi * cos_pa);
-        let strain = gamma_ab / SQRT3;
+        // Strain rate at AB: epsdot_AB = C0 V_s / (sqrt(3) l_AB) (Lalwani et al. 2009, Sec. 2).
         let strain_rate = c0 * v_s / (SQRT3 * l_ab);
         // The athermal part (A + B eps^n)(1 + C ln epsdot) is fixed at (phi, C0): evaluated once.
-        let athermal = self.jc.hardening(strain) * self.jc.rate_factor(strain_rate);
-        let tan_phi = phi_rad.tan();
-        let k_at_work = self.flow_stress_pa(strain, strain_rate, tw) / SQRT3;
+        let athermal = hard * self.jc.rate_factor(strain_rate);
+        let tan_phi = sin_phi / cos_phi;
+        let k_at_work = athermal * self.softening_d(tw).0 / SQRT3;
         if !(k_at_work.is_finite() && k_at_work > 0.0) {
             return Err(ModelError::out_of_range(
                 "primary-zone flow stress at the work temperature (Pa)",
@@ -211,38 +278,10 @@ impl Context<'_> {
                 format!("a positive JC stress (strain {strain:.3}, strain rate {strain_rate:.3e} 1/s)"),
             ));
         }
-        // T_AB = T_w + eta dT_SZ with dT_SZ = (1 - beta) F_s cos(alpha) / (rho Cp t1 w cos(phi - alpha))
-        // and F_s = k_AB l_AB w (Oxley 1989, Sec. 4.3), solved for T_AB on [T_w, T_m].
-        let eta = self.options.eta;
-        let rise = |t: f64| -> (f64, f64, f64, bool) {
-            let (rho_cp, cond) = self.thermal(t);
-            let k = athermal * self.softening(t) / SQRT3;
-            let rt = rho_cp * v * t1 / cond;
-            let (beta, outside) = self.heat_partition_tan(rt * tan_phi);
-            ((1.0 - beta) * k * alpha.cos() / (rho_cp * sin_phi * cos_pa), k, beta, outside)
-        };
-        let f = |t: f64| -> Result<f64, ModelError> { Ok(t - tw - eta * rise(t).0) };
+        // T_AB = T_w + eta dT_SZ (Oxley 1989, Sec. 4.3), solved in temperatures.rs.
+        let ab = self.solve_t_ab(phi_rad, athermal, cos_a / (sin_phi * cos_pa), tan_phi)?;
+        let (t_ab, d_t_sz, k_ab) = (ab.t_ab_c, ab.rise_sz_c, ab.k_ab_pa);
         let tm = self.jc.tm_c.min(self.material.melting_c);
-        let (tol, cap) = (self.options.temperature_tolerance_c, self.options.max_bracket_iterations);
-        let what = "primary-zone temperature T_AB";
-        let hint = self.hints.ab_c.get();
-        let t_ab = match try_hint(f, if hint.is_finite() { hint } else { tw + 300.0 }, tw, tm, tol) {
-            Some(t) => t,
-            None => {
-                let f_lo = f(tw)?;
-                let f_hi = f(tm)?;
-                if f_hi < 0.0 {
-                    return Err(ModelError::AboveMelting {
-                        what: what.into(),
-                        temperature_c: tm - f_hi,
-                        melting_c: tm,
-                    });
-                }
-                brent_root(f, tw, tm, f_lo, f_hi, tol, cap, what)?
-            }
-        };
-        self.hints.ab_c.set(t_ab);
-        let (d_t_sz, k_ab, beta, beta_outside) = rise(t_ab);
         if !(k_ab > 0.0) {
             return Err(ModelError::AboveMelting {
                 what: "primary-zone temperature T_AB".into(),
@@ -250,11 +289,7 @@ impl Context<'_> {
                 melting_c: tm,
             });
         }
-        // Equivalent hardening index n_eq = n B eps^n / (A + B eps^n) (Lalwani et al. 2009, Sec. 2).
-        let hard = self.jc.hardening(strain);
-        let n_eq =
-            if strain > 0.0 && hard > 0.0 { self.jc.n * self.jc.b_pa * strain.powf(self.jc.n) / hard } else { 0.0 };
-        // Direction of the resultant: tan(theta) = 1 + 2 (pi/4 - phi) - C0 n_eq (Oxley 1989, Sec. 4.2).
+        // Direction of the resultant: tan(theta) = 1 + 2(pi/4 - phi) - C0 n_eq (Oxley 1989, Sec. 4.2).
         let tan_theta = 1.0 + 2.0 * (FRAC_PI_4 - phi_rad) - c0 * n_eq;
         let theta = tan_theta.atan();
         // Friction angle lambda = theta - phi + alpha (Oxley 1989, Sec. 4.2).
@@ -269,14 +304,20 @@ impl Context<'_> {
         // Forces per unit width: F_s = k_AB l_AB, R = F_s / cos(theta), F = R sin(lambda),
         // N = R cos(lambda), F_c = R cos(lambda - alpha), F_t = R sin(lambda - alpha) (Oxley 1989, Sec. 4.2).
         let f_s = k_ab * l_ab;
-        let r = f_s / theta.cos();
-        let (f_c, f_t) = (r * (lambda - alpha).cos(), r * (lambda - alpha).sin());
-        let (fr, nr) = (r * lambda.sin(), r * lambda.cos());
+        // Trigonometry of theta, lambda = theta - (phi - alpha) and lambda - alpha = theta - phi by
+        // angle addition from tan(theta).
+        let cos_theta = 1.0 / (1.0 + tan_theta * tan_theta).sqrt();
+        let sin_theta = tan_theta * cos_theta;
+        let r = f_s / cos_theta;
+        let (sin_la, cos_la) = (sin_theta * cos_phi - cos_theta * sin_phi, cos_theta * cos_phi + sin_theta * sin_phi);
+        let (sin_l, cos_l) = (sin_theta * cos_pa - cos_theta * sin_pa, cos_theta * cos_pa + sin_theta * sin_pa);
+        let (f_c, f_t) = (r * cos_la, r * sin_la);
+        let (fr, nr) = (r * sin_l, r * cos_l);
         // Chip thickness t2 = t1 cos(phi - alpha) / sin(phi) (Oxley 1989, Sec. 4.2).
         let t2 = t1 * cos_pa / sin_phi;
         // Tool-chip contact length h = t1 sin(theta) / (cos(lambda) sin(phi)) [1 + C0 n_eq / (3 tan(theta))]
         // (Lalwani et al. 2009, Sec. 2; Oxley 1989, Sec. 4.2).
-        let h = t1 * theta.sin() / (lambda.cos() * sin_phi) * (1.0 + c0 * n_eq / (3.0 * tan_theta));
+        let h = t1 * sin_theta / (cos_l * sin_phi) * (1.0 + c0 * n_eq / (3.0 * tan_theta));
         if !(h.is_finite() && h > 0.0) {
             return Err(ModelError::out_of_range(
                 "tool-chip contact length h (m)",
@@ -287,18 +328,34 @@ impl Context<'_> {
         // Normal stress at B from the stress distribution along AB:
         // sigma_N' = k_AB (1 + pi/2 - 2 alpha - 2 C0 n_eq) (Lalwani et al. 2009, Sec. 2).
         let sigma_n_prime = k_ab * (1.0 + FRAC_PI_2 - 2.0 * alpha - 2.0 * c0 * n_eq);
+        // Mean chip temperature T_C = T_w + dT_SZ + dT_C, dT_C = F sin(phi) / (rho Cp(T_C) t1 cos(phi - a))
+        // (Oxley 1989, Sec. 4.3), solved in temperatures.rs. It does not depend on delta.
+        let base = tw + d_t_sz;
+        let (t_c, d_t_c) = self.solve_t_c(phi_rad, base, fr * sin_phi / (t1 * cos_pa))?;
+        // Maximum interface rise log10(dT_M / dT_C) = 0.06 - 0.195 delta sqrt(R_T t2 / h) + 0.5 log10(R_T t2 / h),
+        // with the thermal number R_T = rho Cp V t1 / K of the chip at T_C (Oxley 1989, Sec. 4.3;
+        // Lalwani et al. 2009, Sec. 2), written as dT_M = dT_C 10^0.06 sqrt(R_T t2/h) exp(-0.195 ln10 sqrt(R_T t2/h) delta).
+        // Evaluating rho Cp and K at T_C, not at T_int, is what the independent implementation
+        // pantale/OxleyPython does and what reproduces Lalwani's delta and T_int (docs/oxley.md).
+        let (rho_cp, cond) = self.thermal(t_c);
+        let gr_sqrt = (rho_cp * v * t1 / cond * t2 / h).sqrt();
+        let chip = ChipHeat {
+            base_c: base,
+            amplitude_c: self.options.psi * d_t_c * TEN_POW_0_06 * gr_sqrt,
+            decay: 0.195 * LN_10 * gr_sqrt,
+            strain_coef: 0.5 * h / (SQRT3 * t2),
+            rate_coef_per_s: v_c / (SQRT3 * t2),
+        };
         Ok(PrimaryZone {
             phi_rad,
             c0,
             shear_plane_length_m: l_ab,
-            chip_velocity_m_per_s: v_c,
             strain,
             strain_rate_per_s: strain_rate,
             temperature_c: t_ab,
-            temperature_rise_sz_c: d_t_sz,
             shear_flow_stress_pa: k_ab,
-            heat_partition: beta,
-            beta_outside_correlation: beta_outside,
+            heat_partition: ab.beta,
+            beta_outside_correlation: ab.beta_outside,
             n_eq,
             theta_rad: theta,
             lambda_rad: lambda,
@@ -310,62 +367,21 @@ impl Context<'_> {
             chip_thickness_m: t2,
             contact_length_m: h,
             model_normal_stress_pa: sigma_n_prime,
+            chip,
         })
     }
 
-    /// The tool-chip interface at `delta` for a given primary zone.
-    ///
-    /// Returns an error only if the bracketed T_C solve fails its iteration cap.
-    pub fn interface(&self, p: &PrimaryZone, delta: f64) -> Result<InterfaceZone, ModelError> {
-        let c = self.conditions;
-        let (alpha, v, t1, tw) = (c.rake_rad, c.speed_m_per_s, c.uncut_chip_thickness_m, c.work_temperature_c);
-        let (t2, h) = (p.chip_thickness_m, p.contact_length_m);
-        let cos_pa = (p.phi_rad - alpha).cos();
-        // Mean chip temperature T_C = T_w + dT_SZ + dT_C with dT_C = F sin(phi) / (rho Cp t1 w cos(phi - alpha))
-        // and rho Cp at T_C (Oxley 1989, Sec. 4.3: the chip is heated by the whole primary-zone rise
-        // and the mean secondary-zone rise), solved on [T_w + dT_SZ, top of the property range].
-        // The function is increasing in T_C (rho Cp grows or is held), so the root is unique.
-        let base = tw + p.temperature_rise_sz_c;
-        let d_t_c_at = |t: f64| -> f64 {
-            let (rho_cp, _) = self.thermal(t);
-            p.friction_force_n_per_m * p.phi_rad.sin() / (rho_cp * t1 * cos_pa)
-        };
-        let g = |t: f64| -> Result<f64, ModelError> { Ok(t - base - d_t_c_at(t)) };
-        let top = self.material.thermal.valid_to_c;
-        let (tol, cap) = (self.options.temperature_tolerance_c, self.options.max_bracket_iterations);
-        let what = "mean chip temperature T_C";
-        let t_c = if top <= base {
-            base + d_t_c_at(top)
-        } else if let Some(t) = try_hint(g, self.hints.int_c.get(), base, top, tol) {
-            t
-        } else {
-            let g_hi = g(top)?;
-            if g_hi <= 0.0 {
-                // Above the property range the properties are held constant: closed form.
-                base + d_t_c_at(top)
-            } else {
-                let g_lo = g(base)?;
-                brent_root(g, base, top, g_lo, g_hi, tol, cap, what)?
-            }
-        };
-        self.hints.int_c.set(t_c);
-        // Maximum interface rise log10(dT_M / dT_C) = 0.06 - 0.195 delta sqrt(R_T t2 / h) + 0.5 log10(R_T t2 / h),
-        // with the thermal number R_T = rho Cp V t1 / K of the chip at T_C, and the mean interface
-        // temperature T_int = T_w + dT_SZ + psi dT_M (Oxley 1989, Sec. 4.3; Lalwani et al. 2009, Sec. 2).
-        // Evaluating rho Cp and K at T_C, not at T_int, is what the independent implementation
-        // pantale/OxleyPython does and what reproduces Lalwani's delta and T_int (docs/oxley.md).
-        let (rho_cp, cond) = self.thermal(t_c);
-        let d_t_c = d_t_c_at(t_c);
-        let rt = rho_cp * v * t1 / cond;
-        let gr = rt * t2 / h;
-        let d_t_m = d_t_c * 10f64.powf(0.06 - 0.195 * delta * gr.sqrt() + 0.5 * gr.log10());
-        let t_int = base + self.options.psi * d_t_m;
-        // Interface strain rate epsdot_int = V_c / (sqrt(3) delta t2) and strain
-        // eps_int = 2 eps_AB + 0.5 h / (sqrt(3) delta t2) (Lalwani et al. 2009, Sec. 2).
-        let strain_rate = p.chip_velocity_m_per_s / (SQRT3 * delta * t2);
-        let strain = 2.0 * p.strain + 0.5 * h / (SQRT3 * delta * t2);
+    /// The tool-chip interface at `delta` for a given primary zone, in closed form (Oxley 1989,
+    /// Sec. 4.3; Lalwani et al. 2009, Sec. 2): `T_int = T_w + dT_SZ + psi dT_M`,
+    /// `epsdot_int = V_c/(sqrt3 delta t2)`, `eps_int = 2 eps_AB + 0.5 h/(sqrt3 delta t2)`,
+    /// `k_chip = sigma_JC(eps_int, epsdot_int, T_int)/sqrt3`.
+    pub fn interface(&self, p: &PrimaryZone, delta: f64) -> InterfaceZone {
+        let ch = &p.chip;
+        let t_int = ch.base_c + ch.amplitude_c * (-ch.decay * delta).exp();
+        let strain_rate = ch.rate_coef_per_s / delta;
+        let strain = 2.0 * p.strain + ch.strain_coef / delta;
         let k_chip = (self.flow_stress_pa(strain, strain_rate, t_int) / SQRT3).max(0.0);
-        Ok(InterfaceZone {
+        InterfaceZone {
             delta,
             strain,
             strain_rate_per_s: strain_rate,
@@ -373,20 +389,32 @@ impl Context<'_> {
             shear_flow_stress_pa: k_chip,
             // Interface stresses from the force system: tau_int = F / (h w), sigma_N = N / (h w)
             // (Oxley 1989, Sec. 4.2).
-            shear_stress_pa: p.friction_force_n_per_m / h,
-            normal_stress_pa: p.normal_force_n_per_m / h,
-        })
+            shear_stress_pa: p.friction_force_n_per_m / p.contact_length_m,
+            normal_stress_pa: p.normal_force_n_per_m / p.contact_length_m,
+        }
     }
 
-    /// Full state at (phi, C0, delta) with the two residuals.
-    pub fn state(&self, phi_rad: f64, c0: f64, delta: f64) -> Result<State, ModelError> {
-        let primary = self.primary(phi_rad, c0)?;
-        self.state_from(primary, delta)
+    /// `d ln k_chip / d ln delta` at fixed primary zone: the derivative of the closed form of
+    /// [`Context::interface`] (JC law, paper Eqs 14 and 16, differentiated term by term; the rate term
+    /// is 1 with zero slope at or below eps0). Zero where Fc(delta) is stationary (see minimum.rs).
+    pub fn chip_log_slope(&self, p: &PrimaryZone, delta: f64) -> f64 {
+        let (jc, ch) = (self.jc, &p.chip);
+        let strain = 2.0 * p.strain + ch.strain_coef / delta;
+        let en1 = strain.powf(jc.n - 1.0);
+        let hard = jc.a_pa + jc.b_pa * en1 * strain;
+        let d_hard = jc.b_pa * jc.n * en1 * (-ch.strain_coef / delta);
+        let rate = ch.rate_coef_per_s / delta;
+        let (rf, d_rf) =
+            if rate > jc.eps0_per_s { (1.0 + jc.c * (rate / jc.eps0_per_s).ln(), -jc.c) } else { (1.0, 0.0) };
+        let e = ch.amplitude_c * (-ch.decay * delta).exp();
+        let (g, dg) = self.softening_d(ch.base_c + e);
+        let d_t = -ch.decay * delta * e;
+        d_hard / hard + d_rf / rf + dg * d_t / g
     }
 
-    /// Full state from an already computed primary zone.
+    /// Full state from a primary zone at delta, with the two residuals.
     pub fn state_from(&self, primary: PrimaryZone, delta: f64) -> Result<State, ModelError> {
-        let interface = self.interface(&primary, delta)?;
+        let interface = self.interface(&primary, delta);
         let k_ab = primary.shear_flow_stress_pa;
         let m_f = self.physics.interface_friction_factor;
         let residual_shear = (interface.shear_stress_pa - m_f * interface.shear_flow_stress_pa) / k_ab;

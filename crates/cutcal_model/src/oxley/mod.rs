@@ -41,7 +41,8 @@
 //! # Failure contract
 //!
 //! Every loop is capped. Returns [`ModelError::NoSolution`] when no (phi, C0) solution exists at
-//! any delta in the ranges (the message names the range and the residual signs),
+//! any delta in the ranges (the message gives the largest `(tau_int - k_chip)/k_AB` over every phi
+//! and delta in the ranges, where it is, the thermal number R_T, and why states are inadmissible),
 //! [`ModelError::AboveMelting`] when T_AB or T_int reaches the melting temperature,
 //! [`ModelError::NoConvergence`] when a capped iteration stops short, and
 //! [`ModelError::OutOfRange`]/[`ModelError::Inconsistent`] for invalid inputs. Never a penalty value.
@@ -73,9 +74,13 @@
 
 mod edge;
 mod equations;
+mod existence;
+mod minimum;
 mod options;
+mod pool;
 mod roots;
 mod solve;
+mod temperatures;
 
 use serde::{Deserialize, Serialize};
 
@@ -193,7 +198,8 @@ pub struct OxleyPrediction {
     pub fc_change_over_delta_band: Option<f64>,
     /// Share of the delta scan points with a (phi, C0) solution.
     pub delta_scan_converged_share: f64,
-    /// Model evaluations (each one a primary plus interface zone) used.
+    /// Primary-zone evaluations used (each with its T_AB and T_C solves; interface states at a
+    /// computed primary zone are closed-form in delta and not counted).
     pub evaluations: usize,
     /// Trust flags.
     pub flags: SolutionFlags,
@@ -252,14 +258,13 @@ pub fn predict_from(
     }
     let hints = TemperatureHints::none();
     let ctx = Context { material, jc, conditions, options, physics, hints: &hints };
-    let mut solver = Solver::new(ctx, start.map(|p| (p.phi_rad, p.c0)));
+    let mut solver = Solver::new(ctx, start.map(|p| p.phi_rad));
     let search = match solver.search_delta() {
         Ok(s) => s,
         // A warm start must not change whether a solution is found: retry cold.
         Err(_) if start.is_some() => {
             let spent = solver.evaluations;
-            hints.ab_c.set(f64::NAN);
-            hints.int_c.set(f64::NAN);
+            hints.reset();
             solver = Solver::new(ctx, None);
             solver.evaluations = spent;
             solver.search_delta()?

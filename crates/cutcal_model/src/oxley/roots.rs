@@ -100,6 +100,45 @@ where
     Err(ModelError::NoConvergence { what: what.to_string(), iterations: max_iter, last_change: last, tolerance: xtol })
 }
 
+/// Newton's method from `x0` on `[lo, hi]`; `f` returns the value and the derivative.
+///
+/// **Source:** Newton-Raphson with the interval safeguard of `rtsafe` (Press et al., *Numerical
+/// Recipes*, 3rd ed. 2007, Sec. 9.4): an iterate that would leave the interval is put on its end,
+/// and a second push past the same end gives up.
+///
+/// Returns the last evaluated `x` once the step from it is at most `xtol`; `None` when the
+/// iteration leaves the interval,
+/// meets a zero or non-finite derivative, an error of `f`, or `max_iter` (callers then bracket the
+/// whole interval with [`brent_root`]: the root is the same to `xtol`, only the work differs).
+pub(crate) fn newton_1d<F>(mut f: F, x0: f64, lo: f64, hi: f64, xtol: f64, max_iter: usize) -> Option<f64>
+where
+    F: FnMut(f64) -> Result<(f64, f64), ModelError>,
+{
+    if !(x0.is_finite() && hi > lo) {
+        return None;
+    }
+    let mut x = x0.clamp(lo, hi);
+    for _ in 0..max_iter {
+        let (fx, dfx) = f(x).ok()?;
+        if !(fx.is_finite() && dfx.is_finite()) || dfx == 0.0 {
+            return None;
+        }
+        let step = fx / dfx;
+        if step.abs() <= xtol {
+            // The evaluated point: within about |step| <= xtol of the root (quadratic convergence),
+            // so the caller can reuse what it computed there.
+            return Some(x);
+        }
+        let xn = x - step;
+        let clipped = xn.clamp(lo, hi);
+        if clipped.to_bits() != xn.to_bits() && clipped.to_bits() == x.to_bits() {
+            return None; // pushed past the same end twice: no root inside from here
+        }
+        x = clipped;
+    }
+    None
+}
+
 /// Result of [`brent_min`]: the abscissa and value of the minimum found.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Minimum {
@@ -207,6 +246,15 @@ mod tests {
         let f = |x: f64| Ok(x - 0.3);
         let e = brent_root(f, 0.0, 1.0, -0.3, 0.7, 1e-300, 1, "cap").unwrap_err();
         assert!(matches!(e, ModelError::NoConvergence { iterations: 1, .. }));
+    }
+
+    #[test]
+    fn newton_finds_sqrt2_and_gives_up_outside_the_interval() {
+        // x^2 - 2 = 0: root sqrt(2); on [2, 3] there is none and Newton is pushed past 2 twice.
+        let f = |x: f64| Ok((x * x - 2.0, 2.0 * x));
+        let r = newton_1d(f, 1.0, 0.0, 2.0, 1e-13, 50).unwrap();
+        assert!((r - 2f64.sqrt()).abs() < 1e-12);
+        assert!(newton_1d(f, 2.5, 2.0, 3.0, 1e-13, 50).is_none());
     }
 
     #[test]
