@@ -29,7 +29,7 @@ fn read_tests(path: PathBuf) -> PyResult<Vec<PyCuttingTest>> {
 #[pyfunction]
 #[pyo3(signature = (material, test, model = "enhanced", starts = 32, seed = 1, preset = "converged", h_mm = None, points = None, r = None,
     rho_cp_original = None, tolerance_c = 1e-6, max_iterations = 50, bootstrap = 0, force_uncertainty = None,
-    chip_uncertainty = None, bootstrap_starts = 4, field_points = 201))]
+    chip_uncertainty = None, bootstrap_starts = 4, field_points = 201, noise_only = false))]
 #[allow(clippy::too_many_arguments)] // the CLI's options, one keyword each
 fn identify(
     py: Python<'_>,
@@ -50,6 +50,7 @@ fn identify(
     chip_uncertainty: Option<f64>,
     bootstrap_starts: usize,
     field_points: usize,
+    noise_only: bool,
 ) -> PyResult<PyIdentifyResult> {
     let req = IdentifyRequest {
         model: model.to_string(),
@@ -66,6 +67,7 @@ fn identify(
         force_uncertainty,
         chip_uncertainty,
         bootstrap_starts,
+        noise_only,
         field_points,
     };
     let mf = material.inner.clone();
