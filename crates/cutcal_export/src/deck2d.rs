@@ -58,6 +58,9 @@ struct Deck {
     n_tool_el: usize,
     travel_mm: f64,
     vel_lcid: i64,
+    /// LS-DYNA's "never" times: contact/adaptivity death 1e20, prescribed-motion death 1e28 (defaults).
+    never: f64,
+    never_motion: f64,
     velocity: f64,
     endtim: f64,
     adpfreq: f64,
@@ -169,6 +172,8 @@ pub fn render_cut2d(input: &ExportInput<'_>, test: &CuttingTest) -> Result<Expor
         n_tool_el: mesh.tool.elements.len(),
         travel_mm: mesh.travel_m * 1e3,
         vel_lcid: VELOCITY_LCID,
+        never: 1e20,
+        never_motion: 1e28,
         velocity: v * f.velocity,
         endtim,
         adpfreq: REMESH_EVERY_ELEMENTS * mesh.fine_m / v,

@@ -18,3 +18,5 @@ mod pytools;
 mod ansys_matml;
 // PyDyna parses every LS-DYNA deck; every referenced ID resolves.
 mod pydyna;
+// Complete 2-D decks per cutting test: snapshot, numbers, PyDyna.
+mod deck2d;
