@@ -39,8 +39,9 @@ pub const TOOL_INNER_SCALE: f64 = 0.15;
 /// the rake overhang of a negative rake.
 pub const TOOL_START_GAP_FACTOR: f64 = 0.5;
 
-/// Errors of the mesh inputs.
-#[derive(Debug, Clone, PartialEq)]
+/// A mesh input out of range: names the input, its value and the rule.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{0}")]
 pub struct BadMeshInput(pub String);
 
 /// A structured quad mesh: nodes (m) and elements (0-based node indices, counter-clockwise).
@@ -379,6 +380,32 @@ mod tests {
                     assert!(((p[0] - b[0] * d).hypot(p[1] - b[1] * d) - r).abs() < 1e-9 * r * 1e3, "{p:?}");
                 }
             }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+        /// Over the range users will use (t1 0.02-0.5 mm, rake -25..40 deg, radius 0..t1/2), every
+        /// tool quad is convex and counter-clockwise, the workpiece quads are positive, and the
+        /// tool's lowest point is on the edge path. (Fine size t1/4 keeps the case small; the tool
+        /// mesh is built the same way at any size.)
+        #[test]
+        fn every_tool_in_range_meshes_without_inversion(
+            t1_um in 20.0f64..500.0, rake_deg in -25.0f64..40.0, r_frac in 0.0f64..0.5
+        ) {
+            let t1 = t1_um * 1e-6;
+            let m = build(t1, rake_deg.to_radians(), r_frac * t1, t1 / 4.0, CUT).unwrap();
+            for e in &m.tool.elements {
+                for k in 0..4 {
+                    let (a, b, c) = (m.tool.nodes[e[k]], m.tool.nodes[e[(k + 1) % 4]], m.tool.nodes[e[(k + 2) % 4]]);
+                    let cross = (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
+                    proptest::prop_assert!(cross > 0.0, "corner of {:?}", e);
+                }
+            }
+            proptest::prop_assert!(m.workpiece.elements.iter().all(|e| quad_area(&m.workpiece, e) > 0.0));
+            let low = m.tool.nodes.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+            proptest::prop_assert!((low + t1).abs() < 1e-9 * t1);
+            proptest::prop_assert!(m.tool.nodes.iter().all(|p| p[0] > m.length_m));
         }
     }
 
