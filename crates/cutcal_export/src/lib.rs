@@ -13,6 +13,9 @@
 //!   a readable sheet;
 //! - **MatML 3.1** XML (quick-xml).
 //!
+//! [`render_cut2d`] writes a complete 2-D plane-strain LS-DYNA deck of one cutting test (mesh,
+//! rigid conducting tool, contact, motion, output; [`deck2d`]).
+//!
 //! Data flow: [`ExportInput`] -> validation and sampling (`physics`) -> per-dialect template
 //! context in the chosen [`UnitSystem`] -> handlebars templates (`templates/`, strict mode) with
 //! Rust number helpers ([`numfmt`]) -> `Vec<`[`ExportFile`]`>`. No I/O: the CLI writes the files.
@@ -26,6 +29,8 @@
 #![warn(missing_docs)]
 
 mod abaqus;
+pub mod deck2d;
+pub mod deck2d_mesh;
 mod deform;
 mod error;
 mod lsdyna;
@@ -38,6 +43,7 @@ pub mod units;
 use cutcal_model::{Interface, JcParams, Material};
 use serde::Serialize;
 
+pub use deck2d::render_cut2d;
 pub use error::ExportError;
 pub use units::UnitSystem;
 

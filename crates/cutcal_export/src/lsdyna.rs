@@ -193,6 +193,13 @@ pub(crate) fn render(
     p: &Prepared,
     input: &ExportInput<'_>,
 ) -> Result<Vec<ExportFile>, ExportError> {
+    let value = context(p, input)?;
+    Ok(vec![ExportFile { name: format!("{}_lsdyna.k", p.stem), contents: templates::render(hb, "lsdyna", &value)? }])
+}
+
+/// The template context of the LS-DYNA cards, shared with the complete 2-D decks
+/// ([`crate::deck2d`]), so both write the same material, thermal and friction data.
+pub(crate) fn context(p: &Prepared, input: &ExportInput<'_>) -> Result<Value, ExportError> {
     let units = input.options.units;
     let f = units.factors();
     let wp = part_mat(&p.wp, &f, 201, "workpiece")?;
@@ -279,7 +286,5 @@ pub(crate) fn render(
             .map(|v| Endtim { endtim: CUT_LENGTH_M / v, speed_m_min: v * 60.0 })
             .collect(),
     };
-    let value: Value = serde_json::to_value(&ctx)
-        .map_err(|e| ExportError::Template { template: "lsdyna".into(), message: e.to_string() })?;
-    Ok(vec![ExportFile { name: format!("{}_lsdyna.k", p.stem), contents: templates::render(hb, "lsdyna", &value)? }])
+    serde_json::to_value(&ctx).map_err(|e| ExportError::Template { template: "lsdyna".into(), message: e.to_string() })
 }

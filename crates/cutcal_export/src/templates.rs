@@ -33,6 +33,7 @@ const TEMPLATES: &[(&str, &str)] = &[
     ("abaqus_thermal", include_str!("../../../templates/abaqus_thermal.inp.hbs")),
     ("abaqus_vfriction", include_str!("../../../templates/abaqus_vfriction.f.hbs")),
     ("lsdyna", include_str!("../../../templates/lsdyna.k.hbs")),
+    ("lsdyna_cut2d", include_str!("../../../templates/lsdyna_cut2d.k.hbs")),
     ("deform_key", include_str!("../../../templates/deform.key.hbs")),
     ("deform_sheet", include_str!("../../../templates/deform_sheet.txt.hbs")),
 ];

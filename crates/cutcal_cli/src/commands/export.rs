@@ -9,12 +9,13 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use cutcal_export::{
-    render, render_all, ContactTemperature, Dialect, ExportFile, ExportInput, ExportOptions, Provenance,
+    render, render_all, render_cut2d, ContactTemperature, Dialect, ExportFile, ExportInput, ExportOptions, Provenance,
     TemperatureGrid, UnitSystem, STANDARD_CONTACT_PRESSURES_MPA, STANDARD_FLOW_STRAIN_RATES_PER_S,
     STANDARD_PLASTIC_STRAINS,
 };
 
 use crate::input::jc_file::load_jc;
+use crate::input::tests_csv::load_tests;
 use cutcal_model::{JcParams, Material};
 
 use crate::input::material_file::{load_material, InterfaceSection, MaterialFile};
@@ -93,6 +94,14 @@ pub struct ExportArgs {
     /// cut (Sec 5.1). Without it no termination card is written (stated in the deck).
     #[arg(long)]
     pub cutting_speed_m_min: Option<f64>,
+    /// Cutting tests (CSV, e.g. fixtures/tests/c38.csv): with `--format lsdyna` or `all`, one
+    /// complete 2-D LS-DYNA deck per test is written beside the cards, `<material>_cut2d_<test>.k`
+    /// (docs/fe-cards.md, "Complete 2-D decks").
+    #[arg(long)]
+    pub tests: Option<PathBuf>,
+    /// Only this test of `--tests`.
+    #[arg(long, requires = "tests")]
+    pub test: Option<String>,
 }
 
 /// The interface section of a workpiece file, or a located error.
@@ -209,6 +218,8 @@ pub fn run(args: &ExportArgs) -> Result<()> {
         FormatChoice::All => render_all(&input),
     }
     .with_context(|| format!("rendering cards for {} with {}", args.material.display(), args.jc.display()))?;
+    let mut files = files;
+    files.extend(decks(args, &input)?);
     if files.is_empty() {
         bail!("no cards were rendered");
     }
@@ -228,6 +239,26 @@ pub fn run(args: &ExportArgs) -> Result<()> {
         println!("wrote {}", p.display());
     }
     Ok(())
+}
+
+/// The complete 2-D decks of `--tests` (all, or `--test`), or none without `--tests`.
+fn decks(args: &ExportArgs, input: &ExportInput<'_>) -> Result<Vec<ExportFile>> {
+    let Some(path) = &args.tests else { return Ok(Vec::new()) };
+    if !matches!(args.format, FormatChoice::Lsdyna | FormatChoice::All) {
+        bail!("--tests writes LS-DYNA decks: use it with --format lsdyna or all");
+    }
+    let tests = load_tests(path)?;
+    let chosen: Vec<_> = tests.iter().filter(|t| args.test.as_ref().is_none_or(|id| &t.id == id)).collect();
+    if chosen.is_empty() {
+        bail!("{}: no test {:?}", path.display(), args.test.as_deref().unwrap_or(""));
+    }
+    chosen
+        .into_iter()
+        .map(|t| {
+            render_cut2d(input, t)
+                .with_context(|| format!("rendering the 2-D deck of test {} of {}", t.id, path.display()))
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -254,7 +285,35 @@ mod tests {
             model_variant: "enhanced DPZD".into(),
             contact_temperature_c: None,
             cutting_speed_m_min: None,
+            tests: None,
+            test: None,
         }
+    }
+
+    #[test]
+    fn tests_option_writes_one_deck_per_chosen_test() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut a = args("fixtures/materials/c38.toml", "fixtures/jc/c38_table5.toml", dir.path());
+        a.format = FormatChoice::Lsdyna;
+        a.tests = Some(fixture("fixtures/tests/c38.csv"));
+        a.test = Some("3".into());
+        run(&a).unwrap();
+        let deck = std::fs::read_to_string(dir.path().join("c38_cut2d_3.k")).unwrap();
+        // C38 test 3 (paper Table 2): 240 m/min, 0.075 mm; edge radius 25 um (fixtures/tests/c38.csv).
+        assert!(
+            deck.contains("V = 240. m/min, t1 = 0.075 mm") && deck.contains("edge radius = 25. um"),
+            "{}",
+            &deck[..2000]
+        );
+        assert!(dir.path().join("c38_lsdyna.k").exists());
+        assert!(!dir.path().join("c38_cut2d_1.k").exists());
+
+        a.test = Some("9".into());
+        let err = run(&a).unwrap_err();
+        assert!(format!("{err:#}").contains("no test \"9\""), "{err:#}");
+        a.test = None;
+        a.format = FormatChoice::Matml;
+        assert!(format!("{:#}", run(&a).unwrap_err()).contains("--format lsdyna or all"));
     }
 
     #[test]

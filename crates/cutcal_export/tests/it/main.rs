@@ -20,3 +20,5 @@ mod ansys_matml;
 mod pydyna;
 // A JC set outside the literature box is flagged in every header.
 mod literature;
+// Complete 2-D decks per cutting test: snapshot, numbers, PyDyna.
+mod deck2d;
