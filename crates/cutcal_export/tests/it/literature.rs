@@ -2,7 +2,8 @@
 //! card file's header (Abaqus, LS-DYNA, DEFORM-style, MatML notes) says which parameter is outside.
 //! The Fortran VFRICTION source is the one file without the line (fixed-form comment width).
 
-use cutcal_export::render_all;
+use cutcal_export::{render_all, render_cut2d};
+use cutcal_model::CuttingTest;
 
 use crate::common;
 
@@ -16,7 +17,10 @@ fn a_set_outside_the_literature_box_is_flagged_in_every_header() {
     case.jc.m = 0.70;
     let prov = common::provenance(&case);
     let opts = common::options();
-    let files = render_all(&common::input(&case, &prov, &opts)).expect("render");
+    let mut files = render_all(&common::input(&case, &prov, &opts)).expect("render");
+    // The complete 2-D deck of a cut (C38 test 3: 240 m/min, 0.075 mm, 1.95 mm, rake 0) too.
+    let test = CuttingTest::new("3", 4.0, 0.075e-3, 1.95e-3, 0.0).unwrap();
+    files.push(render_cut2d(&common::input(&case, &prov, &opts), &test).expect("deck"));
     for f in &files {
         if f.name.ends_with(".f") {
             continue;
