@@ -165,9 +165,9 @@ impl Context<'_> {
     /// Johnson-Cook flow stress with the thermal-softening hook: evaluated at
     /// `T_w + kappa_T (T - T_w)` (kappa_T = 1: Lalwani et al. 2009, Sec. 2).
     fn flow_stress_pa(&self, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> f64 {
-        let tw = self.conditions.work_temperature_c;
-        let t = tw + self.physics.thermal_softening_scale * (temperature_c - tw);
-        self.jc.flow_stress(strain, strain_rate_per_s, t)
+        // (A + B eps^n)(1 + C ln(epsdot/eps0)) (paper Eq 16) times 1 - theta^m (Eq 14, with the
+        // hook inside `softening_d`): the same as `JcParams::flow_stress` at the scaled temperature.
+        self.jc.hardening(strain) * self.jc.rate_factor(strain_rate_per_s) * self.softening_d(temperature_c).0
     }
 
     /// C0 solving the normal-stress condition `sigma_N = N/(h w) = sigma_N'` at phi, in closed form.

@@ -35,10 +35,23 @@ impl Pool {
         self.n
     }
 
-    /// The points sorted by |f|, best first.
-    fn sorted(&self) -> [(f64, f64); Pool::CAP] {
-        let mut s = self.pts;
-        s[..self.n].sort_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+    /// The three points of smallest |f|, best first (one insertion pass; ties keep the earlier
+    /// point, as a stable sort would). Unused slots are NaN.
+    fn sorted(&self) -> [(f64, f64); 3] {
+        let mut s = [(f64::NAN, f64::NAN); 3];
+        let mut k = 0;
+        for &p in &self.pts[..self.n] {
+            let mut i = k.min(2);
+            if k == 3 && !(p.1.abs() < s[2].1.abs()) {
+                continue;
+            }
+            while i > 0 && p.1.abs() < s[i - 1].1.abs() {
+                s[i] = s[i - 1];
+                i -= 1;
+            }
+            s[i] = p;
+            k = (k + 1).min(3);
+        }
         s
     }
 
