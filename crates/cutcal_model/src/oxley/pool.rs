@@ -118,6 +118,26 @@ mod tests {
     }
 
     #[test]
+    fn top_three_match_a_full_sort() {
+        // A deterministic scramble of |f| values with ties; the selection must agree with a stable
+        // sort by |f| (the order the pool used before the one-pass selection).
+        for seed in 0..50u64 {
+            let mut pool = Pool::new();
+            let mut all = Vec::new();
+            for i in 0..Pool::CAP as u64 {
+                let v = ((seed * 7 + i * 13) % 11) as f64 - 5.0;
+                pool.push(i as f64, v);
+                all.push((i as f64, v));
+            }
+            all.sort_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+            let top = pool.sorted();
+            for k in 0..3 {
+                assert_eq!(top[k].0.to_bits(), all[k].0.to_bits(), "seed {seed}, rank {k}");
+            }
+        }
+    }
+
+    #[test]
     fn keeps_the_best_points_when_full() {
         let mut pool = Pool::new();
         for i in 0..20 {
