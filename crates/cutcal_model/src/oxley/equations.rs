@@ -165,9 +165,9 @@ impl Context<'_> {
     /// Johnson-Cook flow stress with the thermal-softening hook: evaluated at
     /// `T_w + kappa_T (T - T_w)` (kappa_T = 1: Lalwani et al. 2009, Sec. 2).
     fn flow_stress_pa(&self, strain: f64, strain_rate_per_s: f64, temperature_c: f64) -> f64 {
-        let tw = self.conditions.work_temperature_c;
-        let t = tw + self.physics.thermal_softening_scale * (temperature_c - tw);
-        self.jc.flow_stress(strain, strain_rate_per_s, t)
+        // (A + B eps^n)(1 + C ln(epsdot/eps0)) (paper Eq 16) times 1 - theta^m (Eq 14, with the
+        // hook inside `softening_d`): the same as `JcParams::flow_stress` at the scaled temperature.
+        self.jc.hardening(strain) * self.jc.rate_factor(strain_rate_per_s) * self.softening_d(temperature_c).0
     }
 
     /// C0 solving the normal-stress condition `sigma_N = N/(h w) = sigma_N'` at phi, in closed form.
@@ -214,10 +214,14 @@ impl Context<'_> {
         let admissible = |u: f64| -> bool {
             let c0 = u / n_eq;
             let tan_theta = t0 - u;
-            let lambda = tan_theta.atan() - phi_rad + alpha;
+            // 0 < lambda = theta - psi < 90 deg without an arctangent: with cos(theta) > 0,
+            // sin(lambda) = cos(theta) (tan(theta) cos psi - sin psi) and
+            // cos(lambda) = cos(theta) (cos psi + tan(theta) sin psi) must both be positive
+            // (lambda lies in (-225, 135) deg for phi in (0, 90) and |a| < 45 deg).
+            let lambda_ok = tan_theta * c_psi - s_psi > 0.0 && c_psi + tan_theta * s_psi > 0.0;
             // h > 0: sin(theta) has the sign of tan(theta) and cos(lambda) > 0 here.
             let h_factor = (3.0 * tan_theta + u) / 3.0;
-            c0 >= clo && c0 <= chi && lambda > 0.0 && lambda < FRAC_PI_2 && h_factor > 0.0
+            c0 >= clo && c0 <= chi && lambda_ok && h_factor > 0.0
         };
         let best = roots.iter().copied().filter(|u| u.is_finite() && admissible(*u)).map(|u| u / n_eq).reduce(f64::min);
         best.ok_or_else(|| {

@@ -130,6 +130,10 @@ impl Solver<'_> {
         }
         // A scan point returned as the answer is solved to the residual tolerance.
         if best.state.residual_norm() >= o.residual_tolerance {
+            // From the scan point itself (within about 1e-6 rad of the root), not an extrapolation
+            // of the points solved after it.
+            self.n_history = 0;
+            self.keep(best.state.primary);
             self.last = Some(best.state.primary.phi_rad);
             best = DeltaPoint { delta: best.delta, state: self.solve_at(best.delta)? };
         }

@@ -27,6 +27,9 @@ const SCAN_BRACKET: f64 = 0.01;
 /// Primary zones kept for reuse.
 const RECENT: usize = 4;
 
+/// Recent primary zones whose exact residuals seed the root search at a new delta.
+const SEEDS: usize = 3;
+
 /// Solver state across the delta search: evaluation count, the last solutions, flags.
 pub(crate) struct Solver<'a> {
     pub ctx: Context<'a>,
@@ -198,8 +201,9 @@ impl<'a> Solver<'a> {
         Ok(brent_root(g, xlo, xhi, glo, ghi, tol, self.ctx.options.max_bracket_iterations, "stationary delta")?.exp())
     }
 
-    /// Local root of `residual_shear` in phi near `phi0`: the recent primary zones within 0.1 rad of
-    /// `phi0` give exact residuals at this target at no primary-zone cost; then inverse quadratic
+    /// Local root of `residual_shear` in phi near `phi0`: the recent primary zones within 0.15 rad of
+    /// `phi0` ([`SEEDS`] at a fixed delta) give exact residuals at this target at no primary-zone
+    /// cost; then inverse quadratic
     /// interpolation / secant steps ([`Pool::next`]), each limited to 0.1 rad and kept in the phi
     /// range. `None` when it leaves the admissible states, stops decreasing the residual or reaches
     /// the cap (the caller then brackets).
@@ -210,8 +214,10 @@ impl<'a> Solver<'a> {
         let x0 = phi0.clamp(lo, hi);
         let mut pool = Pool::new();
         let mut found: Option<State> = None;
-        // The two most recent primary zones (the end of the last root search).
-        for k in 1..=2 {
+        // The most recent primary zones (the end of the last root searches): three at a fixed delta
+        // (one interface state each), two at the stationary delta (a delta solve each).
+        let seeds = if matches!(target, Target::Delta(_)) { SEEDS } else { 2 };
+        for k in 1..=seeds {
             let Some(p) = self.recent[(self.next_slot + RECENT - k) % RECENT] else { continue };
             if (p.phi_rad - x0).abs() > 3.0 * MAX_PHI_STEP {
                 continue;
@@ -226,9 +232,10 @@ impl<'a> Solver<'a> {
         if found.is_some() {
             return found;
         }
-        // phi0 is evaluated when it is a prediction (`trust_start`) or fewer than two cached points
-        // are near; otherwise the first step is Newton's with the exact slope at this target.
-        if pool.len() < 2 || trust_start {
+        // phi0 is evaluated when fewer than two cached points are near, or when it is a prediction
+        // (`trust_start`) and fewer than three are: three exact residuals at this target give an
+        // inverse quadratic step that is closer to the root than the extrapolated phi0.
+        if pool.len() < 2 || (trust_start && pool.len() < 3) {
             if let Ok(s) = self.eval(x0, target, hint) {
                 if s.residual_norm() < tol {
                     return Some(s);

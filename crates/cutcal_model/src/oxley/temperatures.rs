@@ -70,7 +70,8 @@ impl Context<'_> {
         } else if theta >= 1.0 {
             (0.0, 0.0)
         } else {
-            let tm = theta.powf(jc.m);
+            // theta^1 = theta exactly: m = 1 (a common JC exponent) skips the power.
+            let tm = if jc.m == 1.0 { theta } else { theta.powf(jc.m) };
             (1.0 - tm, -jc.m * tm / theta * kappa / span)
         }
     }
@@ -85,9 +86,9 @@ impl Context<'_> {
         let (beta, outside, slope) = if x < BETA_CORRELATION_LOW {
             (0.5 - 0.35 * BETA_CORRELATION_LOW.log10(), true, 0.0)
         } else if x <= 10.0 {
-            (0.5 - 0.35 * x.log10(), false, -0.35 / LN_10)
+            (0.5 - 0.35 / LN_10 * x.ln(), false, -0.35 / LN_10)
         } else {
-            (0.3 - 0.15 * x.log10(), false, -0.15 / LN_10)
+            (0.3 - 0.15 / LN_10 * x.ln(), false, -0.15 / LN_10)
         };
         let s = self.physics.heat_partition_scale;
         let scaled = beta * s;

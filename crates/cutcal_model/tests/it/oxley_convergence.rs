@@ -88,7 +88,10 @@ fn map(material: &Material, jc: &JcParams, work_c: f64) -> (usize, usize, BTreeM
                         if let ModelError::NoSolution { .. } = e {
                             assert!(msg.contains("tau_int") && msg.contains("R_T ="), "no physical reason: {msg}");
                             let r = stated_largest_residual(&msg);
-                            assert!(r.is_some_and(|r| r < 0.0), "no stated negative largest residual: {msg}");
+                            assert!(
+                                r.is_some_and(|r| r < 0.0),
+                                "no stated negative largest residual at V {v} t1 {t1} rake {rake}: {msg}"
+                            );
                             // An independent, denser search finds no solution either.
                             let mut dense = opts.clone();
                             dense.phi_scan_points *= 4;
