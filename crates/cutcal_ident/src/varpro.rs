@@ -15,6 +15,8 @@
 //! Everything that does not depend on the parameters (`ln eps`, the rate logarithm, `ln theta`,
 //! `sqrt(w)`, `sqrt(w) F`) is cached once by [`crate::dpzd_fit::ZoneFitProblem`].
 
+use std::cell::RefCell;
+
 use nalgebra::{DMatrix, DVector};
 
 use crate::dpzd_fit::CachedPoint;
@@ -22,11 +24,24 @@ use crate::error::IdentError;
 use crate::lm::{Bounds, Problem};
 
 /// The projected Eq 15 problem over `q = (n, C, m)`, with `A` and `B` (MPa) eliminated.
+///
+/// The bases and their derivatives at the last `q` evaluated are kept, so the Jacobian at an
+/// accepted LM point costs no further `exp` (the problem is for one thread: it is not `Sync`).
 #[derive(Debug, Clone)]
 pub struct VarproProblem<'a> {
     cached: &'a [CachedPoint],
     a_box: [f64; 2],
     b_box: [f64; 2],
+    last: RefCell<Evaluation>,
+}
+
+/// Bases, derivatives and linear solution at one `q`.
+#[derive(Debug, Clone, Default)]
+struct Evaluation {
+    q: [f64; 3],
+    valid: bool,
+    basis: Vec<Basis>,
+    linear: Option<LinearSolution>,
 }
 
 /// The optimal linear parameters at one `q`.
@@ -57,7 +72,30 @@ struct Basis {
 impl<'a> VarproProblem<'a> {
     /// The projected problem over the cached points with the boxes of A and B (MPa).
     pub(crate) fn new(cached: &'a [CachedPoint], a_box: [f64; 2], b_box: [f64; 2]) -> Self {
-        Self { cached, a_box, b_box }
+        Self { cached, a_box, b_box, last: RefCell::new(Evaluation::default()) }
+    }
+
+    /// Fills `last` at `q` (bases with derivatives, the optimal `(A, B)`) unless it holds `q`.
+    fn evaluate(&self, q: &DVector<f64>) -> std::cell::RefMut<'_, Evaluation> {
+        let mut e = self.last.borrow_mut();
+        let key = [q[0], q[1], q[2]];
+        if !(e.valid && e.q == key) {
+            e.basis.clear();
+            let mut s = [0.0; 5];
+            for c in self.cached {
+                let b = Self::basis(c, q, true);
+                s[0] += b.u * b.u;
+                s[1] += b.u * b.v;
+                s[2] += b.v * b.v;
+                s[3] += b.u * b.y;
+                s[4] += b.v * b.y;
+                e.basis.push(b);
+            }
+            e.linear = Some(solve_box(s, self.a_box, self.b_box));
+            e.q = key;
+            e.valid = true;
+        }
+        e
     }
 
     /// Bases `u`, `v` at `q` (and, with `derivs`, their derivatives).
@@ -166,9 +204,9 @@ impl Problem for VarproProblem<'_> {
 
     /// Projected residuals `A(q) u + B(q) v - y` (paper Eq 15, weighted).
     fn residuals(&self, q: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
-        let l = self.linear_solution(q);
-        for (o, c) in out.iter_mut().zip(self.cached) {
-            let b = Self::basis(c, q, false);
+        let e = self.evaluate(q);
+        let l = e.linear.unwrap_or_else(|| solve_box([0.0; 5], self.a_box, self.b_box));
+        for (o, b) in out.iter_mut().zip(&e.basis) {
             *o = l.a_mpa * b.u + l.b_mpa * b.v - b.y;
         }
         Ok(())
@@ -178,9 +216,10 @@ impl Problem for VarproProblem<'_> {
     /// `dr/dq_j = d_j + Phi_f dc_j`, `d_j = Phi'_j c`, `G dc_j = -Phi'_{f,j}^T r - Phi_f^T d_j`,
     /// with `Phi_f` the columns of the linear parameters not held at a bound and `G = Phi_f^T Phi_f`.
     fn jacobian(&self, q: &DVector<f64>, _bounds: &Bounds, out: &mut DMatrix<f64>) -> Result<(), IdentError> {
-        let l = self.linear_solution(q);
+        let e = self.evaluate(q);
+        let l = e.linear.unwrap_or_else(|| solve_box([0.0; 5], self.a_box, self.b_box));
         let (a, b) = (l.a_mpa, l.b_mpa);
-        let basis: Vec<Basis> = self.cached.iter().map(|c| Self::basis(c, q, true)).collect();
+        let basis = &e.basis;
         // d_j = dPhi/dq_j c and the sums needed for dc_j.
         // s_ur[j] = du_j . r, s_vr[j] = dv_j . r, s_ud[j] = u . d_j, s_vd[j] = v . d_j.
         let (mut s_ur, mut s_vr, mut s_ud, mut s_vd) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
