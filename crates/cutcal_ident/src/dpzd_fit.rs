@@ -349,6 +349,16 @@ pub fn identify(
     let mut report = multistart(&projected, &nonlinear, options)?;
     report.best.params = projected.full_parameters(&report.best.params);
     if report.best.termination == crate::lm::Termination::MaxIterations {
+        // Every projected start stopped at the cap (a flat n-m valley): continue the best one with
+        // the full 5-parameter LM from where it stopped, and keep that if it converges.
+        if let Ok(more) = crate::lm::minimise(problem, &b, &report.best.params, &options.lm) {
+            if more.termination != crate::lm::Termination::MaxIterations && more.ssr <= report.best.ssr {
+                let iterations = report.best.iterations + more.iterations;
+                report.best = crate::lm::LmResult { iterations, ..more };
+            }
+        }
+    }
+    if report.best.termination == crate::lm::Termination::MaxIterations {
         return Err(IdentError::NotConverged {
             what: format!("Levenberg-Marquardt (all {} starts)", report.starts),
             iterations: report.best.iterations,
