@@ -263,6 +263,33 @@ impl Problem for VarproProblem<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        // Independent check of the box solution: no point of a 41 x 41 grid of the box (corners
+        // and edges included) has a smaller objective.
+        #[test]
+        fn box_solution_is_never_beaten_by_a_grid_point(
+            u in proptest::collection::vec(0.0..2.0f64, 6), v in proptest::collection::vec(0.0..2.0f64, 6),
+            y in proptest::collection::vec(-5.0..5.0f64, 6),
+            a_lo in -3.0..1.0f64, a_w in 0.0..4.0f64, b_lo in -3.0..1.0f64, b_w in 0.0..4.0f64,
+        ) {
+            let dot = |p: &[f64], q: &[f64]| p.iter().zip(q).map(|(a, b)| a * b).sum::<f64>();
+            let s = [dot(&u, &u), dot(&u, &v), dot(&v, &v), dot(&u, &y), dot(&v, &y)];
+            let (a_box, b_box) = ([a_lo, a_lo + a_w], [b_lo, b_lo + b_w]);
+            let l = solve_box(s, a_box, b_box);
+            prop_assert!(l.a_mpa >= a_box[0] && l.a_mpa <= a_box[1] && l.b_mpa >= b_box[0] && l.b_mpa <= b_box[1]);
+            let obj = |a: f64, b: f64| (0..6).map(|k| (a * u[k] + b * v[k] - y[k]).powi(2)).sum::<f64>();
+            let best = obj(l.a_mpa, l.b_mpa);
+            for i in 0..=40 {
+                for j in 0..=40 {
+                    let a = a_box[0] + a_w * f64::from(i) / 40.0;
+                    let b = b_box[0] + b_w * f64::from(j) / 40.0;
+                    prop_assert!(best <= obj(a, b) + 1e-9 * (1.0 + best), "({}, {}) beats {:?}", a, b, l);
+                }
+            }
+        }
+    }
 
     #[test]
     fn box_solution_is_the_unconstrained_optimum_inside_and_an_edge_outside() {
@@ -273,7 +300,7 @@ mod tests {
         let s = [dot(&u, &u), dot(&u, &v), dot(&v, &v), dot(&u, &y), dot(&v, &y)];
         let l = solve_box(s, [0.0, 10.0], [0.0, 10.0]);
         assert!((l.a_mpa - 1.0).abs() < 1e-12 && (l.b_mpa - 2.0).abs() < 1e-12 && l.a_free && l.b_free);
-        // b <= 1.5: with b = 1.5 held, a = mean(y - 1.5 v) = (1 + 2 + 3 ... ) : y - 1.5 v = (1, 1.5, 2) -> a = 1.5.
+        // b <= 1.5: with b = 1.5 held, a = mean(y - 1.5 v) = mean(1, 1.5, 2) = 1.5.
         let l = solve_box(s, [0.0, 10.0], [0.0, 1.5]);
         assert!((l.b_mpa - 1.5).abs() < 1e-12 && !l.b_free && l.a_free);
         assert!((l.a_mpa - 1.5).abs() < 1e-12, "{l:?}");
