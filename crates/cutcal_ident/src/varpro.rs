@@ -79,7 +79,9 @@ impl<'a> VarproProblem<'a> {
     fn evaluate(&self, q: &DVector<f64>) -> std::cell::RefMut<'_, Evaluation> {
         let mut e = self.last.borrow_mut();
         let key = [q[0], q[1], q[2]];
-        if !(e.valid && e.q == key) {
+        // The cache is for the identical point only (bitwise), as the LM re-evaluates it.
+        let same = e.valid && e.q.iter().zip(&key).all(|(x, y)| x.to_bits() == y.to_bits());
+        if !same {
             e.basis.clear();
             let mut s = [0.0; 5];
             for c in self.cached {
