@@ -51,7 +51,8 @@ fn rel(a: f64, b: f64) -> f64 {
 
 fn config() -> ProptestConfig {
     let cases = std::env::var("CUTCAL_FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(24);
-    ProptestConfig { cases, ..ProptestConfig::default() }
+    // A fixed seed: the CI run is deterministic (the project's rule); CUTCAL_FUZZ_CASES widens it.
+    ProptestConfig { cases, rng_seed: proptest::test_runner::RngSeed::Fixed(11), ..ProptestConfig::default() }
 }
 
 proptest! {
