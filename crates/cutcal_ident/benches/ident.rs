@@ -1,10 +1,17 @@
-//! Benchmarks: one 50-start enhanced-DPZD identification of C38 test 3 (paper Table 4).
+//! Benchmarks: one 50-start enhanced-DPZD identification of C38 test 3 (paper Table 4): the
+//! `paper` preset (N = 51, unclamped rate term), the clamped law at N = 51, and the `converged`
+//! preset's final fit on its quadrature nodes; each by variable projection (what `identify`
+//! runs) and, for comparison, by the full 5-parameter LM on the same problem.
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use cutcal_ident::dpzd_fit::{identify, ZoneFitProblem};
+use cutcal_ident::multistart::multistart;
+use cutcal_ident::quadrature::{adaptive_rule, identify_converged, ConvergedOptions};
 use cutcal_ident::{identify_from_zone, JcBounds, JcConstants, MultistartOptions};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState};
-use cutcal_model::Material;
+use cutcal_model::{Material, RateTerm};
+use nalgebra::DVector;
 
 fn c38() -> Material {
     cutcal_model::reference::c38_table3()
@@ -12,6 +19,7 @@ fn c38() -> Material {
 
 fn bench(c: &mut Criterion) {
     let m = c38();
+    // C38 test 3, paper Tables 2 and 6 (tau_max from Eq 9 with the measured forces).
     let state = ShearPlaneState {
         speed_m_per_s: 4.0,
         rake_rad: 0.0,
@@ -26,6 +34,27 @@ fn bench(c: &mut Criterion) {
     c.bench_function("identify_enhanced_c38_test3_50_starts", |b| {
         b.iter(|| identify_from_zone(black_box(&z), 51, &bounds, consts, &opts).unwrap())
     });
+
+    // The problems as the presets build them.
+    let pts = z.interior_points(51).unwrap();
+    let paper = ZoneFitProblem::weighted(pts.clone(), &vec![1.0; 51], consts, RateTerm::Unclamped);
+    let conv = identify_converged(&z, &bounds, consts, &opts, &ConvergedOptions::default()).unwrap();
+    let jc = conv.identification.jc;
+    let p = DVector::from_vec(vec![jc.a_pa / 1e6, jc.b_pa / 1e6, jc.n, jc.c, jc.m]);
+    let rule = adaptive_rule(&z, &p, consts, RateTerm::Clamped, &ConvergedOptions::default()).unwrap();
+    let nodes = rule.points.len();
+    let converged = ZoneFitProblem::weighted(rule.points, &rule.weights, consts, RateTerm::Clamped);
+    let full_bounds = bounds.to_bounds().unwrap();
+    let mut g = c.benchmark_group("identify_50_starts");
+    for (name, problem) in [("paper_n51".to_string(), &paper), (format!("converged_{nodes}_nodes"), &converged)] {
+        g.bench_function(format!("{name}_varpro"), |b| {
+            b.iter(|| identify(black_box(problem), &bounds, &opts).unwrap())
+        });
+        g.bench_function(format!("{name}_full_lm"), |b| {
+            b.iter(|| multistart(black_box(problem), &full_bounds, &opts).unwrap())
+        });
+    }
+    g.finish();
 }
 
 criterion_group!(benches, bench);

@@ -14,6 +14,7 @@ use serde::Serialize;
 use crate::error::IdentError;
 use crate::lm::{Bounds, Problem};
 use crate::multistart::{fit_statistics, multistart, FitStatistics, MultistartOptions};
+use crate::varpro::VarproProblem;
 
 /// Parameter names in the order of the optimisation vector.
 pub const JC_NAMES: [&str; 5] = ["a_mpa", "b_mpa", "n", "c", "m"];
@@ -121,17 +122,17 @@ pub struct ZoneFitProblem {
 
 /// Parameter-independent parts of the JC law at one point.
 #[derive(Debug, Clone, Copy)]
-struct CachedPoint {
+pub(crate) struct CachedPoint {
     /// `ln eps`, or `None` where eps = 0 (then eps^n = 0 for n > 0).
-    ln_strain: Option<f64>,
+    pub(crate) ln_strain: Option<f64>,
     /// `ln(epsdot/eps0)` as it enters the law (clamped at 0 for [`RateTerm::Clamped`]).
-    ln_rate: f64,
+    pub(crate) ln_rate: f64,
     /// Square root of the quadrature weight (1 for the uniform discrete objective).
-    sqrt_weight: f64,
+    pub(crate) sqrt_weight: f64,
     /// `ln theta`, or `None` where the homologous temperature is 0 (no softening).
-    ln_theta: Option<f64>,
+    pub(crate) ln_theta: Option<f64>,
     /// Target `sqrt(3) tau_e`, MPa.
-    target_mpa: f64,
+    pub(crate) target_mpa: f64,
 }
 
 impl ZoneFitProblem {
@@ -191,6 +192,12 @@ impl ZoneFitProblem {
     #[must_use]
     pub fn points(&self) -> &[ZonePoint] {
         &self.points
+    }
+
+    /// The same problem with A and B (MPa) eliminated by variable projection ([`crate::varpro`]).
+    #[must_use]
+    pub fn projected(&self, a_box_mpa: [f64; 2], b_box_mpa: [f64; 2]) -> VarproProblem<'_> {
+        VarproProblem::new(&self.cached, a_box_mpa, b_box_mpa)
     }
 
     /// JC stress in MPa and its gradient w.r.t. `[A_MPa, B_MPa, n, C, m]` at one cached point.
@@ -321,13 +328,36 @@ pub fn identify_from_zone_with(
 }
 
 /// Runs the multistart identification on an assembled problem.
+///
+/// The multistart runs over `(n, C, m)` on the variable-projection problem ([`crate::varpro`]):
+/// A and B are solved exactly for each `(n, C, m)`, so the result is the minimum of the same
+/// Eq 15 objective over `[A, B, n, C, m]`; the statistics use the full 5-parameter Jacobian.
+///
+/// **Source:** paper Eq 15; Golub and Pereyra (1973) variable projection.
 pub fn identify(
     problem: &ZoneFitProblem,
     bounds: &JcBounds,
     options: &MultistartOptions,
 ) -> Result<JcIdentification, IdentError> {
     let b = bounds.to_bounds()?;
-    let report = multistart(problem, &b, options)?;
+    let projected = problem.projected(bounds.a_mpa, bounds.b_mpa);
+    let nonlinear = Bounds::new(
+        JC_NAMES[2..].iter().map(|s| (*s).to_string()).collect(),
+        vec![bounds.n[0], bounds.c[0], bounds.m[0]],
+        vec![bounds.n[1], bounds.c[1], bounds.m[1]],
+    )?;
+    let mut report = multistart(&projected, &nonlinear, options)?;
+    report.best.params = projected.full_parameters(&report.best.params);
+    if report.best.termination == crate::lm::Termination::MaxIterations {
+        // Every projected start stopped at the cap (a flat n-m valley): continue the best one with
+        // the full 5-parameter LM from where it stopped, and keep that if it converges.
+        if let Ok(more) = crate::lm::minimise(problem, &b, &report.best.params, &options.lm) {
+            if more.termination != crate::lm::Termination::MaxIterations && more.ssr <= report.best.ssr {
+                let iterations = report.best.iterations + more.iterations;
+                report.best = crate::lm::LmResult { iterations, ..more };
+            }
+        }
+    }
     if report.best.termination == crate::lm::Termination::MaxIterations {
         return Err(IdentError::NotConverged {
             what: format!("Levenberg-Marquardt (all {} starts)", report.starts),

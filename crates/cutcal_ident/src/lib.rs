@@ -4,6 +4,8 @@
 //! - [`multistart`]: seeded Latin-hypercube multistart and fit statistics (covariance, correlation,
 //!   parameters at bounds);
 //! - [`dpzd_fit`]: the paper's Eq 15 identification from one DPZD zone solution;
+//! - [`varpro`]: the same objective with A and B eliminated (variable projection), the fast path
+//!   of [`dpzd_fit::identify`];
 //! - [`quadrature`]: the Eq 15 objective as a zone integral (adaptive Gauss-Kronrod) and the
 //!   `converged` identification;
 //! - [`joint`]: JC fitted jointly to several tests through the extended Oxley model, with
@@ -26,6 +28,7 @@ pub mod lm;
 pub mod multistart;
 pub mod quadrature;
 pub mod stats;
+pub mod varpro;
 pub mod zone_thickness;
 
 pub use dpzd_fit::{identify_from_zone, identify_from_zone_with, JcBounds, JcConstants, JcIdentification};

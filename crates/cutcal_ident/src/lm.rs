@@ -231,7 +231,7 @@ pub fn minimise<P: Problem + ?Sized>(
         for (k, w) in width.iter().enumerate() {
             jac.column_mut(k).scale_mut(*w);
         }
-        let g = jac.transpose() * &r;
+        let g = jac.tr_mul(&r);
         // Active set: at a bound with the descent direction pointing out of the box.
         let free: Vec<usize> = free_dims
             .iter()
@@ -244,7 +244,7 @@ pub fn minimise<P: Problem + ?Sized>(
             break;
         }
         let jf = DMatrix::from_fn(m, free.len(), |i, k| jac[(i, free[k])]);
-        let jtj = jf.transpose() * &jf;
+        let jtj = jf.tr_mul(&jf);
         let gf = DVector::from_iterator(free.len(), free.iter().map(|&i| g[i]));
         loop {
             let mut a = jtj.clone();
