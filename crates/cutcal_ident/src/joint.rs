@@ -320,7 +320,7 @@ pub fn plausible_bounds(user: &JcBounds, class: Option<MaterialClass>) -> (JcBou
     let lit = LiteratureBox::of(class);
     let meet = |u: [f64; 2], l: [f64; 2]| {
         let (lo, hi) = (u[0].max(l[0]), u[1].min(l[1]));
-        if u[0] == u[1] {
+        if u[1] <= u[0] {
             // A fixed parameter stays as the user fixed it (reported if outside the box).
             u
         } else if lo <= hi {
