@@ -81,7 +81,8 @@ def test_fields_are_numpy_arrays_with_units_in_their_names_and_match_the_cli_csv
     header, *rows = out.read_text().splitlines()
     m = cutcal.Material.from_toml(C38)
     t3 = pick(cutcal.read_tests(C38_TESTS, as_frame=False), "3")
-    f = cutcal.identify(m, t3).fields
+    res = cutcal.identify(m, t3)
+    f = res.fields
     names = ["x_mm", "gamma", "gamma_dot_per_s", "eps", "eps_dot_per_s", "tau_mpa", "sigma_eff_mpa", "temperature_c"]
     assert list(f) == names == header.split(",")
     table = np.array([[float(x) for x in r.split(",")] for r in rows])
@@ -90,7 +91,11 @@ def test_fields_are_numpy_arrays_with_units_in_their_names_and_match_the_cli_csv
         assert isinstance(a, np.ndarray) and a.dtype == np.float64 and a.shape == (201,), name
         # The CSV is rounded (6 decimals / 6 significant digits / 4 decimals): compare at that precision.
         assert np.allclose(a, table[:, j], rtol=1e-5, atol=1e-4), name
-    assert f["x_mm"][0] == pytest.approx(-0.05) and f["x_mm"][-1] == pytest.approx(0.05)
+    # x spans the zone -h/2 .. h/2 with the h the identification used (by default the forward model's
+    # l_AB/C0, reported as h_mm).
+    h = res.to_dict()["h_mm"]
+    assert 0.0 < h < 0.075
+    assert f["x_mm"][0] == pytest.approx(-h / 2) and f["x_mm"][-1] == pytest.approx(h / 2)
     few = cutcal.identify(m, t3, field_points=7).fields
     assert all(v.shape == (7,) for v in few.values())
 
