@@ -301,11 +301,11 @@ pub fn minimise<P: Problem + ?Sized>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// Rosenbrock as least squares: r = (10 (y - x^2), 1 - x); minimum (1, 1).
-    struct Rosen;
+    pub(crate) struct Rosen;
     impl Problem for Rosen {
         fn parameter_count(&self) -> usize {
             2

@@ -207,21 +207,7 @@ pub fn fit_statistics<P: Problem + ?Sized>(
 mod tests {
     use super::*;
 
-    /// Rosenbrock as least squares: r = (10 (y - x^2), 1 - x); minimum (1, 1).
-    struct Rosen;
-    impl Problem for Rosen {
-        fn parameter_count(&self) -> usize {
-            2
-        }
-        fn residual_count(&self) -> usize {
-            2
-        }
-        fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
-            out[0] = 10.0 * (p[1] - p[0] * p[0]);
-            out[1] = 1.0 - p[0];
-            Ok(())
-        }
-    }
+    use crate::lm::tests::Rosen;
 
     #[test]
     fn capped_starts_are_counted_and_never_preferred_to_a_converged_one() {

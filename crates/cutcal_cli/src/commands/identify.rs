@@ -295,7 +295,6 @@ const H_SENSITIVITY_FACTORS: [f64; 5] = [0.5, 0.707, 1.0, 1.414, 2.0];
 pub fn identify_dpzd(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSettings) -> Result<DpzdOutcome> {
     let (mut out, source, history) = if settings.h_from_forward_model {
         let oxley = crate::commands::predict::oxley_options(mf.oxley.as_ref(), false, None, None, None, None, None)?;
-        let mut last: Option<DpzdOutcome> = None;
         let fp = cutcal_ident::zone_thickness::self_consistent_h::<anyhow::Error>(
             settings.h_m,
             H_FIXED_POINT.0,
@@ -309,7 +308,6 @@ pub fn identify_dpzd(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSetti
                     &oxley,
                     mf.material.room_c,
                 )?;
-                last = Some(o);
                 Ok(z.h_m)
             },
         );
@@ -333,10 +331,7 @@ pub fn identify_dpzd(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSetti
                 (o, source, history)
             }
             Err(e) => {
-                let o = match last {
-                    Some(o) if (o.report.h_mm - settings.h_m * 1e3).abs() < 1e-12 => o,
-                    _ => identify_dpzd_at(mf, test, &DpzdSettings { h_m: settings.h_m, ..settings.clone() })?,
-                };
+                let o = identify_dpzd_at(mf, test, settings)?;
                 let source =
                     format!("{} mm default: the forward model gave no zone thickness ({:#})", settings.h_m * 1e3, e);
                 (o, source, vec![settings.h_m * 1e3])
