@@ -12,5 +12,6 @@ mod oxley_props;
 mod oxley_edge;
 // Every output against the independent implementation pantale/OxleyPython (fixture with its command).
 mod oxley_reference;
+mod oxley_scan_density;
 // The fast solve path against the stored predictions of the previous solver.
 mod oxley_fast_path;
