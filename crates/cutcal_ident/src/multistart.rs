@@ -348,6 +348,51 @@ mod tests {
         assert_eq!(r.best.termination, Termination::MaxIterations);
     }
 
+    /// `r = (x^2 - 1, 0.3 (x - 1), 0.5)`: the global minimum x = 1 (SSR 0.25) and a local one
+    /// near x = -1 (SSR about 0.61), separated by a maximum near 0.
+    struct TwoMinima;
+    impl Problem for TwoMinima {
+        fn parameter_count(&self) -> usize {
+            1
+        }
+        fn residual_count(&self) -> usize {
+            3
+        }
+        fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
+            out[0] = p[0] * p[0] - 1.0;
+            out[1] = 0.3 * (p[0] - 1.0);
+            out[2] = 0.5;
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn basin_rule_stops_starts_in_both_basins_and_keeps_the_counts() {
+        let b = Bounds::new(vec!["x".into()], vec![-2.0], vec![2.0]).unwrap();
+        let o = MultistartOptions::new(20, 4);
+        let all = multistart(&TwoMinima, &b, &o).unwrap();
+        assert_eq!(o.basin_stop, BasinStop::Auto);
+        assert_eq!(all.stopped_starts, 0, "Auto is off in the generic multistart");
+        let fast = multistart_with_basin(&TwoMinima, &b, &o, Some(0.1)).unwrap();
+        println!(
+            "all: at best {}; fast: at best {}, stopped {} ({} at best)",
+            all.starts_at_best, fast.starts_at_best, fast.stopped_starts, fast.stopped_at_best
+        );
+        // The same best minimum and the same count of starts at it; both basins had stopped starts.
+        assert!((fast.best.params[0] - 1.0).abs() < 1e-6 && (all.best.params[0] - 1.0).abs() < 1e-6);
+        assert_eq!(fast.starts_at_best, all.starts_at_best);
+        assert!(all.starts_at_best < 20, "some starts must reach the local minimum");
+        assert!(fast.stopped_at_best > 0 && fast.stopped_starts > fast.stopped_at_best, "{fast:?}");
+        // A stopped start names a converged start that found its minimum.
+        for (i, j) in fast.joined.iter().enumerate() {
+            if let Some(j) = j {
+                assert!(*j < i && fast.joined[*j].is_none());
+            }
+        }
+        assert!(multistart_with_basin(&TwoMinima, &b, &o, Some(0.0)).is_err());
+        assert!(multistart_with_basin(&TwoMinima, &b, &o, Some(f64::NAN)).is_err());
+    }
+
     #[test]
     fn start_points_are_a_latin_hypercube_and_deterministic() {
         let a = start_points(3, 11, 7);

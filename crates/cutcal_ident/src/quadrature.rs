@@ -272,18 +272,18 @@ pub struct WarmStart {
 }
 
 impl WarmStart {
-    /// The warm start of a converged identification (its final rule is rebuilt on `zone`).
+    /// The warm start of a converged identification on `zone` (its final rule is rebuilt there).
     ///
     /// Returns an error if the rule cannot be rebuilt (as [`adaptive_rule`]).
-    pub fn from_converged(
+    pub fn from_identification(
         zone: &ZoneSolution,
-        converged: &ConvergedIdentification,
+        identification: &JcIdentification,
         constants: JcConstants,
         options: &ConvergedOptions,
     ) -> Result<Self, IdentError> {
-        let p = vector(&converged.identification);
+        let p = vector(identification);
         let rule = adaptive_rule(zone, &p, constants, RateTerm::Clamped, options)?;
-        Ok(Self { jc: converged.identification.jc, edges_rel: rule.edges_rel })
+        Ok(Self { jc: identification.jc, edges_rel: rule.edges_rel })
     }
 }
 
