@@ -11,6 +11,8 @@
 //! A, B, n, C and m move by less than the parameter tolerance. Both loops are capped and end in a
 //! typed [`IdentError::NotConverged`].
 
+use std::collections::hash_map::{Entry, HashMap};
+
 use cutcal_model::dpzd::{ZonePoint, ZoneSolution};
 use cutcal_model::RateTerm;
 use nalgebra::DVector;
@@ -148,6 +150,47 @@ pub fn adaptive_rule_from(
     options: &ConvergedOptions,
     edges_rel: &[f64],
 ) -> Result<ZoneRule, IdentError> {
+    rule_with_cache(zone, p, constants, rate_term, options, edges_rel, &mut PanelCache::default())
+}
+
+/// The zone points of the panels evaluated so far, as unit-weight fit problems keyed by the
+/// panel's ends (bitwise). The zone fields do not depend on the JC parameters, so a rule rebuilt
+/// at new parameters on the same zone re-uses them and only re-evaluates the residuals.
+#[derive(Debug, Default)]
+struct PanelCache {
+    panels: HashMap<(u64, u64), ZoneFitProblem>,
+}
+
+impl PanelCache {
+    /// The 15-node problem of panel `[a, b]` of `zone`.
+    fn panel(
+        &mut self,
+        zone: &ZoneSolution,
+        a: f64,
+        b: f64,
+        constants: JcConstants,
+        rate_term: RateTerm,
+    ) -> Result<&ZoneFitProblem, IdentError> {
+        match self.panels.entry((a.to_bits(), b.to_bits())) {
+            Entry::Occupied(e) => Ok(e.into_mut()),
+            Entry::Vacant(e) => {
+                let pts = panel_nodes(a, b).iter().map(|n| zone.point(n.0)).collect::<Result<Vec<_>, _>>()?;
+                Ok(e.insert(ZoneFitProblem::weighted(pts, &[1.0; 15], constants, rate_term)))
+            }
+        }
+    }
+}
+
+/// [`adaptive_rule_from`] with the zone points of `cache`.
+fn rule_with_cache(
+    zone: &ZoneSolution,
+    p: &DVector<f64>,
+    constants: JcConstants,
+    rate_term: RateTerm,
+    options: &ConvergedOptions,
+    edges_rel: &[f64],
+    cache: &mut PanelCache,
+) -> Result<ZoneRule, IdentError> {
     let ok = edges_rel.len() >= 3
         && edges_rel.first() == Some(&-0.5)
         && edges_rel.last() == Some(&0.5)
@@ -161,24 +204,22 @@ pub fn adaptive_rule_from(
         )));
     }
     let h = zone.config.zone_thickness_m;
-    let eval_panel = |a: f64, b: f64| -> Result<(f64, f64, f64, Vec<ZonePoint>), IdentError> {
+    let mut eval_panel = |a: f64, b: f64| -> Result<(f64, f64, f64), IdentError> {
         let nodes = panel_nodes(a, b);
-        let pts = nodes.iter().map(|n| zone.point(n.0)).collect::<Result<Vec<_>, _>>()?;
-        let w: Vec<f64> = vec![1.0; pts.len()];
-        let prob = ZoneFitProblem::weighted(pts.clone(), &w, constants, rate_term);
+        let prob = cache.panel(zone, a, b, constants, rate_term)?;
         let res = prob.raw_residuals(p);
         let (mut k, mut g, mut target) = (0.0, 0.0, 0.0);
-        for ((node, r), pt) in nodes.iter().zip(&res).zip(&pts) {
+        for ((node, r), pt) in nodes.iter().zip(&res).zip(prob.points()) {
             k += node.1 * r * r;
             g += node.2 * r * r;
             target += node.1 * (pt.effective_stress_pa / 1e6).powi(2);
         }
-        Ok((k, (k - g).abs(), target, pts))
+        Ok((k, (k - g).abs(), target))
     };
     let mut panels: Vec<(f64, f64, f64, f64, f64)> = Vec::new();
     for w in edges_rel.windows(2) {
         let (a, b) = (w[0] * h, w[1] * h);
-        let (k, e, t, _) = eval_panel(a, b)?;
+        let (k, e, t) = eval_panel(a, b)?;
         panels.push((a, b, k, e, t));
     }
     let mut converged = false;
@@ -200,7 +241,7 @@ pub fn adaptive_rule_from(
         let (a, b, ..) = panels.swap_remove(idx);
         let mid = 0.5 * (a + b);
         for (lo, hi) in [(a, mid), (mid, b)] {
-            let (k, e, t, _) = eval_panel(lo, hi)?;
+            let (k, e, t) = eval_panel(lo, hi)?;
             panels.push((lo, hi, k, e, t));
         }
     }
@@ -218,10 +259,8 @@ pub fn adaptive_rule_from(
     let mut points = Vec::with_capacity(15 * panels.len());
     let mut weights = Vec::with_capacity(15 * panels.len());
     for (a, b, ..) in &panels {
-        for n in panel_nodes(*a, *b) {
-            points.push(zone.point(n.0)?);
-            weights.push(n.1 / h);
-        }
+        points.extend_from_slice(cache.panel(zone, *a, *b, constants, rate_term)?.points());
+        weights.extend(panel_nodes(*a, *b).iter().map(|n| n.1 / h));
     }
     Ok(ZoneRule { points, weights, panels: panels.len(), rel_error, edges_rel })
 }
@@ -258,7 +297,16 @@ pub fn identify_converged(
     let rate = RateTerm::Clamped;
     // Start from the uniform 51-point fit of the same law.
     let id = identify_from_zone_with(zone, 51, rate, bounds, constants, multistart)?;
-    refit_until_converged(zone, bounds, constants, multistart, options, id, &[-0.5, 0.0, 0.5], None)
+    refit_until_converged(
+        zone,
+        bounds,
+        constants,
+        multistart,
+        options,
+        id,
+        (&[-0.5, 0.0, 0.5], None),
+        &mut PanelCache::default(),
+    )
 }
 
 /// A warm start for [`identify_converged_warm`]: a nearby converged identification (the nominal
@@ -307,17 +355,20 @@ pub fn identify_converged_warm(
     warm: &WarmStart,
 ) -> Result<ConvergedIdentification, IdentError> {
     let p = DVector::from_vec(vec![warm.jc.a_pa / 1e6, warm.jc.b_pa / 1e6, warm.jc.n, warm.jc.c, warm.jc.m]);
-    let rule = adaptive_rule_from(zone, &p, constants, RateTerm::Clamped, options, &warm.edges_rel)?;
+    let mut cache = PanelCache::default();
+    let rule = rule_with_cache(zone, &p, constants, RateTerm::Clamped, options, &warm.edges_rel, &mut cache)?;
     let problem = ZoneFitProblem::weighted(rule.points, &rule.weights, constants, RateTerm::Clamped);
     let id = identify_warm(&problem, bounds, multistart, Some(&p))?;
-    refit_until_converged(zone, bounds, constants, multistart, options, id, &warm.edges_rel, Some(rule.edges_rel))
+    let first = (warm.edges_rel.as_slice(), Some(rule.edges_rel));
+    refit_until_converged(zone, bounds, constants, multistart, options, id, first, &mut cache)
 }
 
 /// The refit loop of [`identify_converged`]: rebuild the rule at the current fit, refit, until
 /// the parameters move by less than the tolerance. A rebuilt rule with the same panels as the
 /// previous one would give the same problem, hence (deterministic multistart) the same fit: the
-/// loop then ends without the refit, with a change of 0. `fitted_on` is the panel set `id` was
-/// fitted on, when known (a warm start); then the multistarts start at the previous solution.
+/// loop then ends without the refit, with a change of 0. `first_edges` are the panels every rule
+/// is refined from, `fitted_on` the panel set `id` was fitted on, when known (a warm start; then
+/// the multistarts start at the previous solution).
 #[allow(clippy::too_many_arguments)]
 fn refit_until_converged(
     zone: &ZoneSolution,
@@ -326,8 +377,8 @@ fn refit_until_converged(
     multistart: &MultistartOptions,
     options: &ConvergedOptions,
     mut id: JcIdentification,
-    first_edges: &[f64],
-    fitted_on: Option<Vec<f64>>,
+    (first_edges, fitted_on): (&[f64], Option<Vec<f64>>),
+    cache: &mut PanelCache,
 ) -> Result<ConvergedIdentification, IdentError> {
     let rate = RateTerm::Clamped;
     let warm = fitted_on.is_some();
@@ -335,7 +386,7 @@ fn refit_until_converged(
     let mut last_edges = fitted_on;
     for refit in 1..=options.max_refits {
         let p = vector(&id);
-        let rule = adaptive_rule_from(zone, &p, constants, rate, options, first_edges)?;
+        let rule = rule_with_cache(zone, &p, constants, rate, options, first_edges, cache)?;
         if last_edges.as_ref() == Some(&rule.edges_rel) {
             return Ok(ConvergedIdentification {
                 identification: id,
