@@ -163,3 +163,43 @@ fn a_rule_refined_from_its_own_panels_is_itself_and_bad_edges_are_rejected() {
         assert!(adaptive_rule_from(&z, &p, CONST, RateTerm::Clamped, &o, &bad).is_err(), "{bad:?}");
     }
 }
+
+#[test]
+fn warm_monte_carlo_is_identical_for_any_thread_count() {
+    use cutcal_ident::bootstrap::{bootstrap, BootstrapOptions, BootstrapReport};
+    let (material, test) = (c38(), test3());
+    let h = 1.5e-5;
+    let z = zone(ENHANCED, h);
+    let nominal_id = converged(&z, BasinStop::Auto);
+    let cfg = DpzdConfig::new(h, 4.0, ENHANCED).unwrap();
+    let objective = SampleObjective::Converged(ConvergedOptions::default());
+    let warm = WarmSampleIdentifier::new(
+        &material,
+        &test,
+        cfg,
+        BOUNDS,
+        CONST,
+        objective,
+        MultistartOptions::new(2, 1),
+        &z,
+        &nominal_id,
+    )
+    .unwrap();
+    let options = BootstrapOptions {
+        samples: 12,
+        seed: 5,
+        uncertainty: RelativeUncertainty::new(0.03, 0.05).unwrap(),
+        choices: Some(UnstatedChoices::new([0.5, 2.0], 1.0).unwrap()),
+    };
+    let nominal = Measurement { cutting_force_n_per_m: 224e3, feed_force_n_per_m: 186e3, chip_thickness_m: 0.157e-3 };
+    let run = |threads: usize| -> BootstrapReport {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| bootstrap(&nominal, &options, |s| warm.identify(s)).unwrap())
+    };
+    let bits = |r: &BootstrapReport| {
+        r.parameters.iter().flat_map(|p| [p.mean, p.std, p.q025, p.q975]).map(f64::to_bits).collect::<Vec<_>>()
+    };
+    let (one, two) = (run(1), run(2));
+    assert_eq!(one.failed, 0, "{:?}", one.first_failure);
+    assert_eq!(bits(&one), bits(&two));
+}
