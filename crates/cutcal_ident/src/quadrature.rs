@@ -359,8 +359,10 @@ pub fn identify_converged_warm(
     let rule = rule_with_cache(zone, &p, constants, RateTerm::Clamped, options, &warm.edges_rel, &mut cache)?;
     let problem = ZoneFitProblem::weighted(rule.points, &rule.weights, constants, RateTerm::Clamped);
     let id = identify_warm(&problem, bounds, multistart, Some(&p))?;
-    let first = (warm.edges_rel.as_slice(), Some(rule.edges_rel));
-    refit_until_converged(zone, bounds, constants, multistart, options, id, first, &mut cache)
+    // Later rules are refined from this sample's first rule (a superset of the nominal panels
+    // where this zone needed more): when it still meets the tolerance at the fit, it is reused.
+    let edges = rule.edges_rel;
+    refit_until_converged(zone, bounds, constants, multistart, options, id, (&edges, Some(edges.clone())), &mut cache)
 }
 
 /// The refit loop of [`identify_converged`]: rebuild the rule at the current fit, refit, until
