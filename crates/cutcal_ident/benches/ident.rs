@@ -1,12 +1,14 @@
 //! Benchmarks: one 50-start enhanced-DPZD identification of C38 test 3 (paper Table 4): the
 //! `paper` preset (N = 51, unclamped rate term), the clamped law at N = 51, and the `converged`
 //! preset's final fit on its quadrature nodes; each by variable projection (what `identify`
-//! runs) and, for comparison, by the full 5-parameter LM on the same problem.
+//! runs) and, for comparison, by the full 5-parameter LM on the same problem; with the multistart
+//! basin rule (the default, `_varpro`) and without it (`_varpro_all_starts`, the path before
+//! issue 11 item 4); and the whole `converged` identification (51-point fit, rule, refits).
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use cutcal_ident::dpzd_fit::{identify, ZoneFitProblem};
-use cutcal_ident::multistart::multistart;
+use cutcal_ident::multistart::{multistart, BasinStop};
 use cutcal_ident::quadrature::{adaptive_rule, identify_converged, ConvergedOptions};
 use cutcal_ident::{identify_from_zone, JcBounds, JcConstants, MultistartOptions};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState};
@@ -45,10 +47,19 @@ fn bench(c: &mut Criterion) {
     let nodes = rule.points.len();
     let converged = ZoneFitProblem::weighted(rule.points, &rule.weights, consts, RateTerm::Clamped);
     let full_bounds = bounds.to_bounds().unwrap();
+    let all_starts = MultistartOptions { basin_stop: BasinStop::Off, ..opts };
     let mut g = c.benchmark_group("identify_50_starts");
+    for (name, o) in [("converged_end_to_end", &opts), ("converged_end_to_end_all_starts", &all_starts)] {
+        g.bench_function(name, |b| {
+            b.iter(|| identify_converged(black_box(&z), &bounds, consts, o, &ConvergedOptions::default()).unwrap())
+        });
+    }
     for (name, problem) in [("paper_n51".to_string(), &paper), (format!("converged_{nodes}_nodes"), &converged)] {
         g.bench_function(format!("{name}_varpro"), |b| {
             b.iter(|| identify(black_box(problem), &bounds, &opts).unwrap())
+        });
+        g.bench_function(format!("{name}_varpro_all_starts"), |b| {
+            b.iter(|| identify(black_box(problem), &bounds, &all_starts).unwrap())
         });
         g.bench_function(format!("{name}_full_lm"), |b| {
             b.iter(|| multistart(black_box(problem), &full_bounds, &opts).unwrap())

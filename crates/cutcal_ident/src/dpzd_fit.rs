@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use crate::error::IdentError;
 use crate::lm::{Bounds, Problem};
-use crate::multistart::{fit_statistics, multistart, FitStatistics, MultistartOptions};
+use crate::multistart::{fit_statistics, multistart_from, FitStatistics, MultistartOptions, DPZD_BASIN_RADIUS};
 use crate::varpro::VarproProblem;
 
 /// Parameter names in the order of the optimisation vector.
@@ -275,8 +275,14 @@ pub struct JcIdentification {
     pub statistics: FitStatistics,
     /// Starts run.
     pub starts: usize,
-    /// Starts that reached the best minimum.
+    /// Starts that reached the best minimum (including those stopped by the basin rule on
+    /// joining it: `stopped_at_best`).
     pub starts_at_best: usize,
+    /// Starts stopped by the multistart basin rule ([`crate::multistart`]) on entering the basin
+    /// of a minimum an earlier start had converged to (0 when the rule is off).
+    pub stopped_starts: usize,
+    /// Of `stopped_starts`, those that joined the best minimum.
+    pub stopped_at_best: usize,
     /// Start index of the best minimum.
     pub best_start: usize,
     /// Starts that failed.
@@ -332,12 +338,29 @@ pub fn identify_from_zone_with(
 /// The multistart runs over `(n, C, m)` on the variable-projection problem ([`crate::varpro`]):
 /// A and B are solved exactly for each `(n, C, m)`, so the result is the minimum of the same
 /// Eq 15 objective over `[A, B, n, C, m]`; the statistics use the full 5-parameter Jacobian.
+/// Starts are stopped by the basin rule of [`crate::multistart`] with radius
+/// [`DPZD_BASIN_RADIUS`] unless `options.basin_stop` says otherwise.
 ///
 /// **Source:** paper Eq 15; Golub and Pereyra (1973) variable projection.
 pub fn identify(
     problem: &ZoneFitProblem,
     bounds: &JcBounds,
     options: &MultistartOptions,
+) -> Result<JcIdentification, IdentError> {
+    identify_warm(problem, bounds, options, None)
+}
+
+/// [`identify`] with the first start at `warm` (`[A_MPa, B_MPa, n, C, m]`; only n, C and m are
+/// used, A and B are solved exactly) instead of the centre of the box.
+///
+/// **Source:** paper Eq 15; Golub and Pereyra (1973) variable projection.
+///
+/// Returns an error as [`identify`].
+pub fn identify_warm(
+    problem: &ZoneFitProblem,
+    bounds: &JcBounds,
+    options: &MultistartOptions,
+    warm: Option<&DVector<f64>>,
 ) -> Result<JcIdentification, IdentError> {
     let b = bounds.to_bounds()?;
     let projected = problem.projected(bounds.a_mpa, bounds.b_mpa);
@@ -346,7 +369,12 @@ pub fn identify(
         vec![bounds.n[0], bounds.c[0], bounds.m[0]],
         vec![bounds.n[1], bounds.c[1], bounds.m[1]],
     )?;
-    let mut report = multistart(&projected, &nonlinear, options)?;
+    let radius = options.basin_stop.radius(Some(DPZD_BASIN_RADIUS));
+    if let Some(w) = warm.filter(|w| w.len() != 5) {
+        return Err(IdentError::InvalidOptions(format!("a warm start needs [A, B, n, C, m], got {} values", w.len())));
+    }
+    let first = warm.map(|w| DVector::from_vec(vec![w[2], w[3], w[4]]));
+    let mut report = multistart_from(&projected, &nonlinear, options, radius, first.as_ref())?;
     report.best.params = projected.full_parameters(&report.best.params);
     if report.best.termination == crate::lm::Termination::MaxIterations {
         // Every projected start stopped at the cap (a flat n-m valley): continue the best one with
@@ -386,6 +414,8 @@ pub fn identify(
         statistics: stats,
         starts: report.starts,
         starts_at_best: report.starts_at_best,
+        stopped_starts: report.stopped_starts,
+        stopped_at_best: report.stopped_at_best,
         best_start: report.best_start,
         failed_starts: report.failed_starts,
         iterations: report.best.iterations,

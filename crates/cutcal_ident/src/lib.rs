@@ -12,7 +12,8 @@
 //!   [`literature`] boxes for n, C and m and an [`identifiability`] verdict;
 //! - [`zone_thickness`]: the zone thickness h = l_AB / C0 of the forward model, made
 //!   self-consistent with the identified set;
-//! - [`bootstrap`]: parameter uncertainty by resampling the measurements (parallel, deterministic).
+//! - [`bootstrap`]: parameter uncertainty by resampling the measurements (parallel, deterministic);
+//! - [`monte_carlo`]: its per-sample identification, warm-started from the nominal fit.
 //!
 //! Data flow: `cutcal_model::dpzd::ZoneSolution` -> [`dpzd_fit::identify_from_zone`] ->
 //! [`dpzd_fit::JcIdentification`].
@@ -25,6 +26,7 @@ pub mod identifiability;
 pub mod joint;
 pub mod literature;
 pub mod lm;
+pub mod monte_carlo;
 pub mod multistart;
 pub mod quadrature;
 pub mod stats;

@@ -159,6 +159,9 @@ pub enum Termination {
     MaxIterations,
     /// Damping grew without finding a decrease (a boundary or flat minimum).
     Stalled,
+    /// Ended by the caller's stop rule ([`minimise_until`]; the multistart basin rule), not a
+    /// convergence: the point is where the run was stopped.
+    Stopped,
 }
 
 /// The result of one bounded LM run.
@@ -197,6 +200,21 @@ pub fn minimise<P: Problem + ?Sized>(
     bounds: &Bounds,
     start: &DVector<f64>,
     options: &LmOptions,
+) -> Result<LmResult, IdentError> {
+    minimise_until(problem, bounds, start, options, |_, _| false)
+}
+
+/// As [`minimise`], with a stop rule: after every accepted step that did not end the run,
+/// `stop(z, ssr)` is called with the unit-box point and its SSR; `true` ends the run with
+/// [`Termination::Stopped`] (used by the multistart basin rule, [`crate::multistart`]).
+///
+/// Returns an error as [`minimise`].
+pub fn minimise_until<P: Problem + ?Sized>(
+    problem: &P,
+    bounds: &Bounds,
+    start: &DVector<f64>,
+    options: &LmOptions,
+    mut stop: impl FnMut(&DVector<f64>, f64) -> bool,
 ) -> Result<LmResult, IdentError> {
     let n = problem.parameter_count();
     let m = problem.residual_count();
@@ -286,6 +304,10 @@ pub fn minimise<P: Problem + ?Sized>(
                 }
                 if dz < options.step_tolerance {
                     termination = Termination::Step;
+                    break 'outer;
+                }
+                if stop(&z, cost) {
+                    termination = Termination::Stopped;
                     break 'outer;
                 }
                 break;

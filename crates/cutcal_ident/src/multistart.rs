@@ -1,12 +1,22 @@
 //! Seeded, deterministic multistart around the bounded LM solver, and fit statistics
 //! (covariance and correlation of the free parameters from the Jacobian).
+//!
+//! **Basin rule (optional, [`BasinStop`]).** A start whose iterate comes within a radius `rho`
+//! (Euclidean, in unit-box coordinates) of a minimum already found by a converged start, with an
+//! SSR not below that minimum's, is stopped and counted as having joined it. This is the distance
+//! filter of Ugray et al. (INFORMS J. Computing 19 (2007) 328-340, Sec 3: a point inside the
+//! "basin radius" of a found local solution and not better than it starts no local solve), the
+//! critical-distance rule of multi-level single linkage (Rinnooy Kan and Timmer, Math. Programming
+//! 39 (1987) 57-78) applied to the iterates of a running solve instead of to sample points only.
+//! Stopped starts are reported ([`MultistartReport::stopped_starts`]) and never become the best;
+//! the first start always runs to convergence.
 
 use nalgebra::{DMatrix, DVector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use crate::error::IdentError;
-use crate::lm::{minimise, Bounds, LmOptions, LmResult, Problem, Termination};
+use crate::lm::{minimise, minimise_until, Bounds, LmOptions, LmResult, Problem, Termination};
 
 /// Multistart settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -19,15 +29,50 @@ pub struct MultistartOptions {
     pub lm: LmOptions,
     /// Two minima are "the same" when their SSR differ by less than this relative amount.
     pub same_minimum_rel_tol: f64,
+    /// Whether starts are stopped on entering a found minimum's basin (see the module).
+    pub basin_stop: BasinStop,
 }
 
 impl MultistartOptions {
-    /// `starts` starts from `seed` with precise local solves.
+    /// `starts` starts from `seed` with precise local solves and the caller's default basin rule.
     #[must_use]
     pub fn new(starts: usize, seed: u64) -> Self {
-        Self { starts, seed, lm: LmOptions::precise(), same_minimum_rel_tol: 1e-6 }
+        Self { starts, seed, lm: LmOptions::precise(), same_minimum_rel_tol: 1e-6, basin_stop: BasinStop::Auto }
     }
 }
+
+/// The basin rule of the multistart (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BasinStop {
+    /// The caller's default: off in the generic [`multistart`] (every start runs to convergence),
+    /// [`DPZD_BASIN_RADIUS`] in the DPZD identification ([`crate::dpzd_fit::identify`]).
+    Auto,
+    /// Every start runs to convergence.
+    Off,
+    /// Stop at this unit-box radius (0 < radius <= 1).
+    Radius(f64),
+}
+
+impl BasinStop {
+    /// The radius this rule applies, given the caller's default for [`BasinStop::Auto`].
+    #[must_use]
+    pub fn radius(self, auto: Option<f64>) -> Option<f64> {
+        match self {
+            Self::Auto => auto,
+            Self::Off => None,
+            Self::Radius(r) => Some(r),
+        }
+    }
+}
+
+/// Basin radius of the DPZD identification (unit box of `(n, C, m)`).
+///
+/// Chosen as 0.05, about a tenth of MLSL's critical distance for 50 uniform points in 3-D
+/// (`r_k = pi^{-1/2} (Gamma(1 + d/2) sigma ln k / k)^{1/d}` = 0.42 with `sigma = 4`, Rinnooy Kan and
+/// Timmer 1987, Eq 4): conservative, so that a start is only stopped when it is already close to
+/// a found minimum.
+pub const DPZD_BASIN_RADIUS: f64 = 0.05;
 
 /// The outcome of a multistart run.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,8 +87,15 @@ pub struct MultistartReport {
     pub failed_starts: usize,
     /// Starts that reached the best minimum (within `same_minimum_rel_tol`).
     pub starts_at_best: usize,
-    /// SSR reached from each start (`None` where it failed).
+    /// SSR reached from each start (`None` where it failed; for a stopped start, the SSR of the
+    /// minimum it joined).
     pub start_ssr: Vec<Option<f64>>,
+    /// Starts stopped by the basin rule (counted in `starts_at_best` when they joined the best).
+    pub stopped_starts: usize,
+    /// Of those, the starts that joined the best minimum.
+    pub stopped_at_best: usize,
+    /// For each start, the start whose minimum it joined when the basin rule stopped it.
+    pub joined: Vec<Option<usize>>,
     /// Starts that stopped at the LM iteration cap without meeting a tolerance. They are not
     /// chosen as the best while any start converged; when none did, `best.termination` is
     /// [`Termination::MaxIterations`] and callers must report it (a typed non-convergence).
@@ -77,30 +129,93 @@ pub fn start_points(dim: usize, starts: usize, seed: u64) -> Vec<DVector<f64>> {
 
 /// Runs the bounded LM from every start and keeps the best.
 ///
+/// With [`BasinStop::Radius`] (here `Auto` is off) starts are stopped by the basin rule.
+///
 /// Returns an error if the options are invalid or every start fails.
 pub fn multistart<P: Problem + ?Sized>(
     problem: &P,
     bounds: &Bounds,
     options: &MultistartOptions,
 ) -> Result<MultistartReport, IdentError> {
+    multistart_with_basin(problem, bounds, options, options.basin_stop.radius(None))
+}
+
+/// [`multistart`] with an explicit basin radius (`None`: every start runs to convergence).
+///
+/// Returns an error as [`multistart`], or if the radius is not in `(0, 1]`.
+pub fn multistart_with_basin<P: Problem + ?Sized>(
+    problem: &P,
+    bounds: &Bounds,
+    options: &MultistartOptions,
+    basin_radius: Option<f64>,
+) -> Result<MultistartReport, IdentError> {
+    multistart_from(problem, bounds, options, basin_radius, None)
+}
+
+/// [`multistart_with_basin`] with start 0 at `first` (physical parameters, clamped into the box)
+/// instead of the centre of the box: a warm start (e.g. a Monte-Carlo sample started from the
+/// nominal solution). The other starts are the same Latin hypercube.
+///
+/// Returns an error as [`multistart_with_basin`], or if `first` has the wrong length.
+pub fn multistart_from<P: Problem + ?Sized>(
+    problem: &P,
+    bounds: &Bounds,
+    options: &MultistartOptions,
+    basin_radius: Option<f64>,
+    first: Option<&DVector<f64>>,
+) -> Result<MultistartReport, IdentError> {
+    if first.map_or(false, |f| f.len() != bounds.len()) {
+        return Err(IdentError::InvalidOptions(format!(
+            "the warm start has {} parameters, the bounds {}",
+            first.map_or(0, DVector::len),
+            bounds.len()
+        )));
+    }
     if options.starts == 0 || options.starts > 100_000 {
         return Err(IdentError::InvalidOptions(format!("starts must be in 1..=100000, got {}", options.starts)));
+    }
+    if let Some(r) = basin_radius {
+        if !(r > 0.0 && r <= 1.0) {
+            return Err(IdentError::InvalidOptions(format!("the basin radius must be in (0, 1], got {r}")));
+        }
     }
     // The best converged start, and the best of all (used only when no start converged).
     let mut best: Option<(usize, LmResult)> = None;
     let mut best_capped: Option<(usize, LmResult)> = None;
     let mut unconverged_starts = 0;
     let mut start_ssr = Vec::with_capacity(options.starts);
+    let mut joined = vec![None; options.starts];
+    // Minima found by converged starts: (unit-box point, SSR, start index).
+    let mut minima: Vec<(DVector<f64>, f64, usize)> = Vec::new();
     let mut first_error = None;
     for (i, z0) in start_points(bounds.len(), options.starts, options.seed).into_iter().enumerate() {
-        let p0 = bounds.from_unit(&z0);
-        match minimise(problem, bounds, &p0, &options.lm) {
+        let p0 = match first {
+            Some(f) if i == 0 => bounds.from_unit(&bounds.to_unit(f)),
+            _ => bounds.from_unit(&z0),
+        };
+        let mut hit = None;
+        let outcome = match basin_radius {
+            Some(rho) if !minima.is_empty() => minimise_until(problem, bounds, &p0, &options.lm, |z, ssr| {
+                hit = minima.iter().position(|(zm, sm, _)| ssr >= *sm && (z - zm).norm() <= rho);
+                hit.is_some()
+            }),
+            _ => minimise(problem, bounds, &p0, &options.lm),
+        };
+        match outcome {
+            Ok(res) if res.termination == Termination::Stopped => {
+                let (_, ssr, owner) = hit.map(|k| minima[k].clone()).expect("a stopped start names its minimum");
+                start_ssr.push(Some(ssr));
+                joined[i] = Some(owner);
+            }
             Ok(res) => {
                 start_ssr.push(Some(res.ssr));
                 let slot = if res.termination == Termination::MaxIterations {
                     unconverged_starts += 1;
                     &mut best_capped
                 } else {
+                    if basin_radius.is_some() {
+                        minima.push((bounds.to_unit(&res.params), res.ssr, i));
+                    }
                     &mut best
                 };
                 if slot.as_ref().map_or(true, |(_, b)| res.ssr < b.ssr) {
@@ -118,7 +233,11 @@ pub fn multistart<P: Problem + ?Sized>(
         first: first_error.clone().unwrap_or_default(),
     })?;
     let tol = options.same_minimum_rel_tol * best.ssr.max(f64::MIN_POSITIVE) + 1e-300;
-    let starts_at_best = start_ssr.iter().flatten().filter(|s| (**s - best.ssr).abs() <= tol).count();
+    let at_best = |s: &f64| (*s - best.ssr).abs() <= tol;
+    let starts_at_best = start_ssr.iter().flatten().filter(|s| at_best(s)).count();
+    let stopped_starts = joined.iter().flatten().count();
+    let stopped_at_best =
+        joined.iter().zip(&start_ssr).filter(|(j, s)| j.is_some() && s.as_ref().map_or(false, at_best)).count();
     let failed_starts = start_ssr.iter().filter(|s| s.is_none()).count();
     Ok(MultistartReport {
         best,
@@ -127,6 +246,9 @@ pub fn multistart<P: Problem + ?Sized>(
         failed_starts,
         starts_at_best,
         start_ssr,
+        stopped_starts,
+        stopped_at_best,
+        joined,
         unconverged_starts,
     })
 }
@@ -224,6 +346,51 @@ mod tests {
         let r = multistart(&Rosen, &b, &o).unwrap();
         assert_eq!(r.unconverged_starts, 9);
         assert_eq!(r.best.termination, Termination::MaxIterations);
+    }
+
+    /// `r = (x^2 - 1, 0.3 (x - 1), 0.5)`: the global minimum x = 1 (SSR 0.25) and a local one
+    /// near x = -1 (SSR about 0.61), separated by a maximum near 0.
+    struct TwoMinima;
+    impl Problem for TwoMinima {
+        fn parameter_count(&self) -> usize {
+            1
+        }
+        fn residual_count(&self) -> usize {
+            3
+        }
+        fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
+            out[0] = p[0] * p[0] - 1.0;
+            out[1] = 0.3 * (p[0] - 1.0);
+            out[2] = 0.5;
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn basin_rule_stops_starts_in_both_basins_and_keeps_the_counts() {
+        let b = Bounds::new(vec!["x".into()], vec![-2.0], vec![2.0]).unwrap();
+        let o = MultistartOptions::new(20, 4);
+        let all = multistart(&TwoMinima, &b, &o).unwrap();
+        assert_eq!(o.basin_stop, BasinStop::Auto);
+        assert_eq!(all.stopped_starts, 0, "Auto is off in the generic multistart");
+        let fast = multistart_with_basin(&TwoMinima, &b, &o, Some(0.1)).unwrap();
+        println!(
+            "all: at best {}; fast: at best {}, stopped {} ({} at best)",
+            all.starts_at_best, fast.starts_at_best, fast.stopped_starts, fast.stopped_at_best
+        );
+        // The same best minimum and the same count of starts at it; both basins had stopped starts.
+        assert!((fast.best.params[0] - 1.0).abs() < 1e-6 && (all.best.params[0] - 1.0).abs() < 1e-6);
+        assert_eq!(fast.starts_at_best, all.starts_at_best);
+        assert!(all.starts_at_best < 20, "some starts must reach the local minimum");
+        assert!(fast.stopped_at_best > 0 && fast.stopped_starts > fast.stopped_at_best, "{fast:?}");
+        // A stopped start names a converged start that found its minimum.
+        for (i, j) in fast.joined.iter().enumerate() {
+            if let Some(j) = j {
+                assert!(*j < i && fast.joined[*j].is_none());
+            }
+        }
+        assert!(multistart_with_basin(&TwoMinima, &b, &o, Some(0.0)).is_err());
+        assert!(multistart_with_basin(&TwoMinima, &b, &o, Some(f64::NAN)).is_err());
     }
 
     #[test]

@@ -11,12 +11,16 @@
 //! A, B, n, C and m move by less than the parameter tolerance. Both loops are capped and end in a
 //! typed [`IdentError::NotConverged`].
 
+use std::collections::hash_map::{Entry, HashMap};
+
 use cutcal_model::dpzd::{ZonePoint, ZoneSolution};
 use cutcal_model::RateTerm;
 use nalgebra::DVector;
 use serde::Serialize;
 
-use crate::dpzd_fit::{identify, identify_from_zone_with, JcBounds, JcConstants, JcIdentification, ZoneFitProblem};
+use crate::dpzd_fit::{
+    identify_from_zone_with, identify_warm, JcBounds, JcConstants, JcIdentification, ZoneFitProblem,
+};
 use crate::error::IdentError;
 use crate::multistart::MultistartOptions;
 
@@ -112,6 +116,8 @@ pub struct ZoneRule {
     pub panels: usize,
     /// Final error estimate relative to `int (f - F)^2`.
     pub rel_error: f64,
+    /// Panel edges as fractions `x/h` of the zone thickness, ascending from -1/2 to 1/2.
+    pub edges_rel: Vec<f64>,
 }
 
 /// Builds the adaptive rule for the integrand `(f - F)^2` at parameters `p` (A, B in MPa).
@@ -127,24 +133,93 @@ pub fn adaptive_rule(
     rate_term: RateTerm,
     options: &ConvergedOptions,
 ) -> Result<ZoneRule, IdentError> {
+    adaptive_rule_from(zone, p, constants, rate_term, options, &[-0.5, 0.0, 0.5])
+}
+
+/// [`adaptive_rule`] starting from the panels with edges `edges_rel` (fractions `x/h`, ascending
+/// from -1/2 to 1/2, containing 0 for the kink on AB) instead of the two halves: a warm start
+/// from the rule of a nearby problem (e.g. the nominal fit of a Monte-Carlo sample). Panels are
+/// only bisected, never merged, so the rule meets the same tolerance with at least those panels.
+///
+/// Returns an error as [`adaptive_rule`], or if the edges are not such a partition.
+pub fn adaptive_rule_from(
+    zone: &ZoneSolution,
+    p: &DVector<f64>,
+    constants: JcConstants,
+    rate_term: RateTerm,
+    options: &ConvergedOptions,
+    edges_rel: &[f64],
+) -> Result<ZoneRule, IdentError> {
+    rule_with_cache(zone, p, constants, rate_term, options, edges_rel, &mut PanelCache::default())
+}
+
+/// The zone points of the panels evaluated so far, as unit-weight fit problems keyed by the
+/// panel's ends (bitwise). The zone fields do not depend on the JC parameters, so a rule rebuilt
+/// at new parameters on the same zone re-uses them and only re-evaluates the residuals.
+#[derive(Debug, Default)]
+struct PanelCache {
+    panels: HashMap<(u64, u64), ZoneFitProblem>,
+}
+
+impl PanelCache {
+    /// The 15-node problem of panel `[a, b]` of `zone`.
+    fn panel(
+        &mut self,
+        zone: &ZoneSolution,
+        a: f64,
+        b: f64,
+        constants: JcConstants,
+        rate_term: RateTerm,
+    ) -> Result<&ZoneFitProblem, IdentError> {
+        match self.panels.entry((a.to_bits(), b.to_bits())) {
+            Entry::Occupied(e) => Ok(e.into_mut()),
+            Entry::Vacant(e) => {
+                let pts = panel_nodes(a, b).iter().map(|n| zone.point(n.0)).collect::<Result<Vec<_>, _>>()?;
+                Ok(e.insert(ZoneFitProblem::weighted(pts, &[1.0; 15], constants, rate_term)))
+            }
+        }
+    }
+}
+
+/// [`adaptive_rule_from`] with the zone points of `cache`.
+fn rule_with_cache(
+    zone: &ZoneSolution,
+    p: &DVector<f64>,
+    constants: JcConstants,
+    rate_term: RateTerm,
+    options: &ConvergedOptions,
+    edges_rel: &[f64],
+    cache: &mut PanelCache,
+) -> Result<ZoneRule, IdentError> {
+    let ok = edges_rel.len() >= 3
+        && edges_rel.first() == Some(&-0.5)
+        && edges_rel.last() == Some(&0.5)
+        && edges_rel.contains(&0.0)
+        && edges_rel.windows(2).all(|w| w[0] < w[1])
+        && edges_rel.len() <= options.max_panels + 1;
+    if !ok {
+        return Err(IdentError::InvalidOptions(format!(
+            "panel edges must ascend from -1/2 through 0 to 1/2 with at most {} panels, got {edges_rel:?}",
+            options.max_panels
+        )));
+    }
     let h = zone.config.zone_thickness_m;
-    let eval_panel = |a: f64, b: f64| -> Result<(f64, f64, f64, Vec<ZonePoint>), IdentError> {
+    let mut eval_panel = |a: f64, b: f64| -> Result<(f64, f64, f64), IdentError> {
         let nodes = panel_nodes(a, b);
-        let pts = nodes.iter().map(|n| zone.point(n.0)).collect::<Result<Vec<_>, _>>()?;
-        let w: Vec<f64> = vec![1.0; pts.len()];
-        let prob = ZoneFitProblem::weighted(pts.clone(), &w, constants, rate_term);
+        let prob = cache.panel(zone, a, b, constants, rate_term)?;
         let res = prob.raw_residuals(p);
         let (mut k, mut g, mut target) = (0.0, 0.0, 0.0);
-        for ((node, r), pt) in nodes.iter().zip(&res).zip(&pts) {
+        for ((node, r), pt) in nodes.iter().zip(&res).zip(prob.points()) {
             k += node.1 * r * r;
             g += node.2 * r * r;
             target += node.1 * (pt.effective_stress_pa / 1e6).powi(2);
         }
-        Ok((k, (k - g).abs(), target, pts))
+        Ok((k, (k - g).abs(), target))
     };
     let mut panels: Vec<(f64, f64, f64, f64, f64)> = Vec::new();
-    for (a, b) in [(-h / 2.0, 0.0), (0.0, h / 2.0)] {
-        let (k, e, t, _) = eval_panel(a, b)?;
+    for w in edges_rel.windows(2) {
+        let (a, b) = (w[0] * h, w[1] * h);
+        let (k, e, t) = eval_panel(a, b)?;
         panels.push((a, b, k, e, t));
     }
     let mut converged = false;
@@ -166,7 +241,7 @@ pub fn adaptive_rule(
         let (a, b, ..) = panels.swap_remove(idx);
         let mid = 0.5 * (a + b);
         for (lo, hi) in [(a, mid), (mid, b)] {
-            let (k, e, t, _) = eval_panel(lo, hi)?;
+            let (k, e, t) = eval_panel(lo, hi)?;
             panels.push((lo, hi, k, e, t));
         }
     }
@@ -178,15 +253,16 @@ pub fn adaptive_rule(
         });
     }
     panels.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let mut edges_rel: Vec<f64> = panels.iter().map(|q| q.0 / h).collect();
+    edges_rel.push(0.5);
+    edges_rel[0] = -0.5;
     let mut points = Vec::with_capacity(15 * panels.len());
     let mut weights = Vec::with_capacity(15 * panels.len());
     for (a, b, ..) in &panels {
-        for n in panel_nodes(*a, *b) {
-            points.push(zone.point(n.0)?);
-            weights.push(n.1 / h);
-        }
+        points.extend_from_slice(cache.panel(zone, *a, *b, constants, rate_term)?.points());
+        weights.extend(panel_nodes(*a, *b).iter().map(|n| n.1 / h));
     }
-    Ok(ZoneRule { points, weights, panels: panels.len(), rel_error })
+    Ok(ZoneRule { points, weights, panels: panels.len(), rel_error, edges_rel })
 }
 
 /// The `converged` identification and how it converged.
@@ -220,22 +296,120 @@ pub fn identify_converged(
 ) -> Result<ConvergedIdentification, IdentError> {
     let rate = RateTerm::Clamped;
     // Start from the uniform 51-point fit of the same law.
-    let mut id = identify_from_zone_with(zone, 51, rate, bounds, constants, multistart)?;
+    let id = identify_from_zone_with(zone, 51, rate, bounds, constants, multistart)?;
+    refit_until_converged(
+        zone,
+        bounds,
+        constants,
+        multistart,
+        options,
+        id,
+        (&[-0.5, 0.0, 0.5], None),
+        &mut PanelCache::default(),
+    )
+}
+
+/// A warm start for [`identify_converged_warm`]: a nearby converged identification (the nominal
+/// fit of a Monte-Carlo propagation) and its rule's panel edges.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WarmStart {
+    /// The nearby solution (its n, C and m start the first local solve).
+    pub jc: cutcal_model::JcParams,
+    /// The panel edges of its final rule, fractions `x/h` ([`ZoneRule::edges_rel`]).
+    pub edges_rel: Vec<f64>,
+}
+
+impl WarmStart {
+    /// The warm start of a converged identification on `zone` (its final rule is rebuilt there).
+    ///
+    /// Returns an error if the rule cannot be rebuilt (as [`adaptive_rule`]).
+    pub fn from_identification(
+        zone: &ZoneSolution,
+        identification: &JcIdentification,
+        constants: JcConstants,
+        options: &ConvergedOptions,
+    ) -> Result<Self, IdentError> {
+        let p = vector(identification);
+        let rule = adaptive_rule(zone, &p, constants, RateTerm::Clamped, options)?;
+        Ok(Self { jc: identification.jc, edges_rel: rule.edges_rel })
+    }
+}
+
+/// [`identify_converged`] warm-started: no uniform 51-point fit; the first rule is refined from
+/// `warm`'s panels at `warm`'s parameters and the first start of every multistart is the
+/// previous solution (`multistart.starts` starts in all, the others the same Latin hypercube).
+///
+/// The minimum is the same as [`identify_converged`]'s within the refit and quadrature
+/// tolerances when `warm` lies in its basin (a Monte-Carlo sample near the nominal fit; checked on
+/// C38 test 3 draws in `tests/fast_path.rs`); the rule can have more panels than a cold start's.
+///
+/// **Source:** as [`identify_converged`].
+///
+/// Returns an error as [`identify_converged`].
+pub fn identify_converged_warm(
+    zone: &ZoneSolution,
+    bounds: &JcBounds,
+    constants: JcConstants,
+    multistart: &MultistartOptions,
+    options: &ConvergedOptions,
+    warm: &WarmStart,
+) -> Result<ConvergedIdentification, IdentError> {
+    let p = DVector::from_vec(vec![warm.jc.a_pa / 1e6, warm.jc.b_pa / 1e6, warm.jc.n, warm.jc.c, warm.jc.m]);
+    let mut cache = PanelCache::default();
+    let rule = rule_with_cache(zone, &p, constants, RateTerm::Clamped, options, &warm.edges_rel, &mut cache)?;
+    let problem = ZoneFitProblem::weighted(rule.points, &rule.weights, constants, RateTerm::Clamped);
+    let id = identify_warm(&problem, bounds, multistart, Some(&p))?;
+    // Later rules are refined from this sample's first rule (a superset of the nominal panels
+    // where this zone needed more): when it still meets the tolerance at the fit, it is reused.
+    let edges = rule.edges_rel;
+    refit_until_converged(zone, bounds, constants, multistart, options, id, (&edges, Some(edges.clone())), &mut cache)
+}
+
+/// The refit loop of [`identify_converged`]: rebuild the rule at the current fit, refit, until
+/// the parameters move by less than the tolerance. A rebuilt rule with the same panels as the
+/// previous one would give the same problem, hence (deterministic multistart) the same fit: the
+/// loop then ends without the refit, with a change of 0. `first_edges` are the panels every rule
+/// is refined from, `fitted_on` the panel set `id` was fitted on, when known (a warm start; then
+/// the multistarts start at the previous solution).
+#[allow(clippy::too_many_arguments)]
+fn refit_until_converged(
+    zone: &ZoneSolution,
+    bounds: &JcBounds,
+    constants: JcConstants,
+    multistart: &MultistartOptions,
+    options: &ConvergedOptions,
+    mut id: JcIdentification,
+    (first_edges, fitted_on): (&[f64], Option<Vec<f64>>),
+    cache: &mut PanelCache,
+) -> Result<ConvergedIdentification, IdentError> {
+    let rate = RateTerm::Clamped;
+    let warm = fitted_on.is_some();
     let mut last_change = f64::INFINITY;
+    let mut last_edges = fitted_on;
     for refit in 1..=options.max_refits {
         let p = vector(&id);
-        let rule = adaptive_rule(zone, &p, constants, rate, options)?;
-        let problem = ZoneFitProblem::weighted(rule.points.clone(), &rule.weights, constants, rate);
-        let next = identify(&problem, bounds, multistart)?;
+        let rule = rule_with_cache(zone, &p, constants, rate, options, first_edges, cache)?;
+        if last_edges.as_ref() == Some(&rule.edges_rel) {
+            return Ok(ConvergedIdentification {
+                identification: id,
+                refits: refit - 1,
+                panels: rule.panels,
+                nodes: rule.points.len(),
+                last_parameter_change: 0.0,
+            });
+        }
+        let problem = ZoneFitProblem::weighted(rule.points, &rule.weights, constants, rate);
+        let next = identify_warm(&problem, bounds, multistart, warm.then_some(&p))?;
         let q = vector(&next);
         last_change = p.iter().zip(q.iter()).map(|(a, b)| (a - b).abs() / a.abs().max(1e-12)).fold(0.0, f64::max);
         id = next;
+        last_edges = Some(rule.edges_rel);
         if last_change < options.parameter_rel_tol {
             return Ok(ConvergedIdentification {
                 identification: id,
                 refits: refit,
                 panels: rule.panels,
-                nodes: rule.points.len(),
+                nodes: problem.points().len(),
                 last_parameter_change: last_change,
             });
         }

@@ -36,12 +36,21 @@ pub struct VarproProblem<'a> {
 }
 
 /// Bases, derivatives and linear solution at one `q`.
+///
+/// The powers `eps^n` and `theta^m` of every point are kept with the `n` and `m` they belong to:
+/// when a step leaves `n` or `m` unchanged (bitwise; e.g. held at a bound) they are reused, so
+/// such an evaluation needs no `exp`.
 #[derive(Debug, Clone, Default)]
 struct Evaluation {
     q: [f64; 3],
     valid: bool,
     basis: Vec<Basis>,
     linear: Option<LinearSolution>,
+    /// `n` of `eps_n`, `m` of `theta_m` (`None`: not computed yet).
+    n_key: Option<u64>,
+    m_key: Option<u64>,
+    eps_n: Vec<f64>,
+    theta_m: Vec<f64>,
 }
 
 /// The optimal linear parameters at one `q`.
@@ -82,10 +91,22 @@ impl<'a> VarproProblem<'a> {
         // The cache is for the identical point only (bitwise), as the LM re-evaluates it.
         let same = e.valid && e.q.iter().zip(&key).all(|(x, y)| x.to_bits() == y.to_bits());
         if !same {
+            let e = &mut *e;
+            let (n, cc, m) = (key[0], key[1], key[2]);
+            if e.n_key != Some(n.to_bits()) {
+                e.eps_n.clear();
+                e.eps_n.extend(self.cached.iter().map(|c| power(c.ln_strain, n, n == 0.0)));
+                e.n_key = Some(n.to_bits());
+            }
+            if e.m_key != Some(m.to_bits()) {
+                e.theta_m.clear();
+                e.theta_m.extend(self.cached.iter().map(|c| power(c.ln_theta, m, false)));
+                e.m_key = Some(m.to_bits());
+            }
             e.basis.clear();
             let mut s = [0.0; 5];
-            for c in self.cached {
-                let b = Self::basis(c, q, true);
+            for ((c, en), tm) in self.cached.iter().zip(&e.eps_n).zip(&e.theta_m) {
+                let b = Self::basis_from(c, *en, *tm, cc);
                 s[0] += b.u * b.u;
                 s[1] += b.u * b.v;
                 s[2] += b.v * b.v;
@@ -100,33 +121,37 @@ impl<'a> VarproProblem<'a> {
         e
     }
 
+    /// Bases `u`, `v` and their derivatives at one point from the powers `eps^n`, `theta^m`.
+    ///
+    /// **Source:** paper Eq 16 (the JC law), split as `A u + B v`.
+    #[inline]
+    fn basis_from(c: &CachedPoint, en: f64, tm: f64, cc: f64) -> Basis {
+        let l_eps = c.ln_strain.unwrap_or(0.0);
+        let l_th = c.ln_theta.unwrap_or(0.0);
+        let sw = c.sqrt_weight;
+        let rf = 1.0 + cc * c.ln_rate;
+        let g = 1.0 - tm;
+        let u = sw * rf * g;
+        let v = en * u;
+        let du_dc = sw * c.ln_rate * g;
+        let du_dm = -sw * rf * tm * l_th;
+        Basis { u, v, y: sw * c.target_mpa, du: [du_dc, du_dm], dv: [v * l_eps, en * du_dc, en * du_dm] }
+    }
+
     /// Bases `u`, `v` at `q` (and, with `derivs`, their derivatives).
     ///
     /// **Source:** paper Eq 16 (the JC law), split as `A u + B v`.
     #[inline]
     fn basis(c: &CachedPoint, q: &DVector<f64>, derivs: bool) -> Basis {
         let (n, cc, m) = (q[0], q[1], q[2]);
-        let (en, l_eps) = match c.ln_strain {
-            Some(l) => ((n * l).exp(), l),
-            None if n == 0.0 => (1.0, 0.0),
-            None => (0.0, 0.0),
-        };
-        let (tm, l_th) = match c.ln_theta {
-            Some(l) => ((m * l).exp(), l),
-            None => (0.0, 0.0),
-        };
-        let sw = c.sqrt_weight;
-        let rf = 1.0 + cc * c.ln_rate;
-        let g = 1.0 - tm;
-        let u = sw * rf * g;
-        let v = en * u;
-        let y = sw * c.target_mpa;
-        if !derivs {
-            return Basis { u, v, y, ..Basis::default() };
+        let en = power(c.ln_strain, n, n == 0.0);
+        let tm = power(c.ln_theta, m, false);
+        if derivs {
+            return Self::basis_from(c, en, tm, cc);
         }
-        let du_dc = sw * c.ln_rate * g;
-        let du_dm = -sw * rf * tm * l_th;
-        Basis { u, v, y, du: [du_dc, du_dm], dv: [v * l_eps, en * du_dc, en * du_dm] }
+        let sw = c.sqrt_weight;
+        let u = sw * (1.0 + cc * c.ln_rate) * (1.0 - tm);
+        Basis { u, v: en * u, y: sw * c.target_mpa, ..Basis::default() }
     }
 
     /// The optimal `(A, B)` inside their box at `q`.
@@ -149,6 +174,17 @@ impl<'a> VarproProblem<'a> {
     pub fn full_parameters(&self, q: &DVector<f64>) -> DVector<f64> {
         let l = self.linear_solution(q);
         DVector::from_vec(vec![l.a_mpa, l.b_mpa, q[0], q[1], q[2]])
+    }
+}
+
+/// `x^p = exp(p ln x)` from a cached `ln x`; for `x = 0` (`None`), 1 when `zero_power_is_one`
+/// (`0^0`, the JC convention for n = 0 at eps = 0) else 0.
+#[inline]
+fn power(ln_x: Option<f64>, p: f64, zero_power_is_one: bool) -> f64 {
+    match ln_x {
+        Some(l) => (p * l).exp(),
+        None if zero_power_is_one => 1.0,
+        None => 0.0,
     }
 }
 
@@ -226,12 +262,15 @@ impl Problem for VarproProblem<'_> {
         // s_ur[j] = du_j . r, s_vr[j] = dv_j . r, s_ud[j] = u . d_j, s_vd[j] = v . d_j.
         let (mut s_ur, mut s_vr, mut s_ud, mut s_vd) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
         let (mut uu, mut uv, mut vv) = (0.0, 0.0, 0.0);
+        let rows = basis.len();
+        // Column-major storage: column j is `cols[j * rows..(j + 1) * rows]`.
+        let cols = out.as_mut_slice();
         for (i, bs) in basis.iter().enumerate() {
             let r = a * bs.u + b * bs.v - bs.y;
             let du = [0.0, bs.du[0], bs.du[1]];
             for j in 0..3 {
                 let d = a * du[j] + b * bs.dv[j];
-                out[(i, j)] = d;
+                cols[j * rows + i] = d;
                 s_ur[j] += du[j] * r;
                 s_vr[j] += bs.dv[j] * r;
                 s_ud[j] += bs.u * d;
@@ -253,8 +292,8 @@ impl Problem for VarproProblem<'_> {
                 (false, false) => (0.0, 0.0),
             };
             if da != 0.0 || db != 0.0 {
-                for (i, bs) in basis.iter().enumerate() {
-                    out[(i, j)] += da * bs.u + db * bs.v;
+                for (o, bs) in cols[j * rows..(j + 1) * rows].iter_mut().zip(basis) {
+                    *o += da * bs.u + db * bs.v;
                 }
             }
         }
