@@ -12,6 +12,10 @@ use crate::support::aisi1045;
 
 const FIXTURE: &str = include_str!("../../../../fixtures/reference/oxleypython-lalwani-grid.csv");
 
+/// The same reference with a second JC set (paper Table 5, 42CrMo4: C 0.117 and m 1.1, far from
+/// Jaspers' C 0.0134 and m 1) in both implementations, on the script's AISI 1045 thermal data.
+const FIXTURE_JC: &str = include_str!("../../../../fixtures/reference/oxleypython-jc-42crmo4.csv");
+
 /// One reference row: conditions and the reference's outputs.
 struct Row {
     speed_m_min: f64,
@@ -27,10 +31,10 @@ struct Row {
     res_normal: f64,
 }
 
-fn rows() -> Vec<Row> {
+fn rows(fixture: &str) -> Vec<Row> {
     let mut out = Vec::new();
     let mut header = true;
-    for line in FIXTURE.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty()) {
+    for line in fixture.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty()) {
         if header {
             assert!(line.starts_with("speed_m_min,uncut_mm,rake_deg,delta"), "{line}");
             header = false;
@@ -61,20 +65,49 @@ fn jc_as_reference() -> JcParams {
     JcParams::new(553.1e6, 600.8e6, 0.234, 0.0134, 1.0, 1.0, 1460.0, 0.0).unwrap()
 }
 
+/// Paper Table 5 for 42CrMo4 (fixtures/jc/42crmo4_table5.toml) with the script's T0 = 0 degC.
+fn jc_42crmo4_as_reference() -> JcParams {
+    JcParams::new(530e6, 153e6, 0.25, 0.117, 1.1, 1.0, 1460.0, 0.0).unwrap()
+}
+
 fn predict(r: &Row) -> OxleyPrediction {
+    predict_with(r, &jc_as_reference(), &OxleyOptions::lalwani2009())
+}
+
+fn predict_with(r: &Row, jc: &JcParams, options: &OxleyOptions) -> OxleyPrediction {
     // w = 1.6 mm and T_w = 25 degC as in the script.
     let cond =
         CuttingConditions::new(r.speed_m_min / 60.0, r.t1_mm * 1e-3, 1.6e-3, r.rake_deg.to_radians(), 25.0).unwrap();
-    oxley::predict(&aisi1045(), &jc_as_reference(), &cond, &OxleyOptions::lalwani2009(), &Physics::baseline())
+    oxley::predict(&aisi1045(), jc, &cond, options, &Physics::baseline())
         .unwrap_or_else(|e| panic!("{} m/min, {} mm, {} deg: {e}", r.speed_m_min, r.t1_mm, r.rake_deg))
 }
 
 #[test]
 fn every_output_matches_the_independent_implementation_over_the_grid() {
-    let rows = rows();
+    let rows = rows(FIXTURE);
+    let failures = compare(&rows, &jc_as_reference(), &OxleyOptions::lalwani2009());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    // 4 Lalwani cases + 21 grid conditions (the issue asks for >= 20).
+    assert!(rows.len() >= 25, "4 Lalwani cases + 21 grid conditions, got {}", rows.len());
+}
+
+#[test]
+fn every_output_matches_the_independent_implementation_with_another_jc_set() {
+    let rows = rows(FIXTURE_JC);
+    // This set needs C0 above Lalwani's 10 (as C38 does, `OxleyOptions::lalwani2009`): both
+    // implementations search C0 up to 20.
+    let mut options = OxleyOptions::lalwani2009();
+    options.c0_range = [2.0, 20.0];
+    let failures = compare(&rows, &jc_42crmo4_as_reference(), &options);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert!(rows.len() >= 6, "6 conditions, got {}", rows.len());
+}
+
+/// Every output of every row against the reference; the failures, one line each.
+fn compare(rows: &[Row], jc: &JcParams, options: &OxleyOptions) -> Vec<String> {
     let mut failures = Vec::new();
     println!("V t1 rake | Fc ours/ref | Ft ours/ref | t2 ours/ref | T_AB ours/ref | T_int ours/ref | delta ours/ref");
-    for r in &rows {
+    for r in rows {
         // The reference's grid point must itself be a solution (residuals within its grid step).
         assert!(
             r.res_shear.abs() < 0.05 && r.res_normal.abs() < 0.05,
@@ -83,7 +116,7 @@ fn every_output_matches_the_independent_implementation_over_the_grid() {
             r.t1_mm,
             r.rake_deg
         );
-        let p = predict(r);
+        let p = predict_with(r, jc, options);
         let rise = |t: f64| t - 25.0;
         let checks = [
             ("Fc", p.cutting_force_n / r.fc_n - 1.0, 0.03),
@@ -123,9 +156,7 @@ fn every_output_matches_the_independent_implementation_over_the_grid() {
             }
         }
     }
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
-    // 4 Lalwani cases + 21 grid conditions (the issue asks for >= 20).
-    assert!(rows.len() >= 25, "4 Lalwani cases + 21 grid conditions, got {}", rows.len());
+    failures
 }
 
 /// Lalwani, Mehta & Jain 2009, Table (200 m/min, w = 1.6 mm): t1 (mm), rake (deg), Fc, Ft (N).
