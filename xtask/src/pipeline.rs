@@ -5,7 +5,7 @@ use std::fs;
 
 use anyhow::{bail, Context, Result};
 
-use cutcal_cli::output::StagedDir;
+use cutcal_io::output::StagedDir;
 
 use crate::flags::PipelineFlags;
 
@@ -196,7 +196,7 @@ mod tests {
             serde_json::from_slice(&fs::read(a.join("c38_signals/report.json")).unwrap()).unwrap();
         let rec = s["recordings"].as_array().unwrap();
         assert_eq!(rec.iter().filter(|r| r["analysis"].is_object()).count(), 3);
-        let rows = cutcal_cli::input::tests_csv::load_tests(&a.join("c38_signals/measured_tests.csv")).unwrap();
+        let rows = cutcal_io::tests_csv::load_tests(&a.join("c38_signals/measured_tests.csv")).unwrap();
         let t3 = rows.iter().find(|t| t.id == "3").unwrap();
         for (got, want) in [(t3.measured.cutting_force_n_per_m, 224e3), (t3.measured.feed_force_n_per_m, 186e3)] {
             assert!((got.unwrap() / want - 1.0).abs() < 0.005, "{got:?} vs {want}");

@@ -5,8 +5,6 @@
 #![allow(clippy::print_stdout)]
 
 pub mod commands;
-pub mod input;
-pub mod output;
 pub mod progress;
 pub mod report;
 

@@ -1,7 +1,7 @@
 //! Error face: sorts an error chain of the library into the Python exception classes, keeping the
 //! CLI's message (`cutcal ...` prints `error: {e:#}`; Python raises the text after `error: `).
 
-use cutcal_cli::input::InputError;
+use cutcal_io::InputError;
 
 /// Which Python exception class an error becomes (all derive from `cutcal.CutcalError`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -78,7 +78,7 @@ mod tests {
 
     #[test]
     fn a_reader_error_keeps_its_location_and_class() {
-        let e = cutcal_cli::input::tests_csv::parse_tests(Path::new("t.csv"), "test,speed_m_min\n1,2\n").unwrap_err();
+        let e = cutcal_io::tests_csv::parse_tests(Path::new("t.csv"), "test,speed_m_min\n1,2\n").unwrap_err();
         let f = face(e);
         assert_eq!(f.kind, ErrorKind::Input);
         assert!(f.message.starts_with("t.csv:1: field `uncut_mm`"), "{}", f.message);

@@ -5,10 +5,10 @@
 use std::path::{Path, PathBuf};
 
 use cutcal_cli::commands::export::{interface_of, load_tool, standard_options};
-use cutcal_cli::input::material_file::MaterialFile;
-use cutcal_cli::output::write_atomic;
 use cutcal_export::{render, render_all, Dialect, ExportFile, ExportInput, ExportOptions, Provenance};
 use cutcal_export::{TemperatureGrid, UnitSystem};
+use cutcal_io::material_file::MaterialFile;
+use cutcal_io::output::write_atomic;
 
 use crate::errors::{classify, face, FaceResult};
 use crate::types::NamedJc;
@@ -127,7 +127,7 @@ pub fn export_cards(mf: &MaterialFile, jc: &NamedJc, req: &ExportRequest, out: &
             for p in &written {
                 let _ = std::fs::remove_file(p);
             }
-            return Err(classify(&e));
+            return Err(face(e));
         }
         written.push(path);
     }

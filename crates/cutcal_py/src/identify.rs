@@ -4,7 +4,7 @@
 
 use cutcal_cli::commands::bootstrap::{report_json, run_bootstrap, BootstrapArgs};
 use cutcal_cli::commands::identify::{identify_dpzd, settings_from_args, IdentifyArgs, Method, ModelChoice, Preset};
-use cutcal_cli::input::material_file::MaterialFile;
+use cutcal_io::material_file::MaterialFile;
 use cutcal_model::{CuttingTest, JcParams};
 
 use crate::errors::{face, FaceError, FaceResult};

@@ -7,7 +7,7 @@
 //! thread count.
 
 use cutcal_cli::commands::predict::{oxley_options, predict_rows, PredictReport};
-use cutcal_cli::input::material_file::MaterialFile;
+use cutcal_io::material_file::MaterialFile;
 use cutcal_model::oxley::{self, CuttingConditions, OxleyOptions, OxleyPrediction, Physics};
 use cutcal_model::{CuttingTest, JcParams};
 use rayon::prelude::*;

@@ -9,9 +9,9 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use cutcal_cli::input::jc_file::{load_jc, parse_jc, JcFile};
-use cutcal_cli::input::material_file::{load_material, parse_material, MaterialFile};
-use cutcal_cli::input::tests_csv::{load_tests, parse_tests};
+use cutcal_io::jc_file::{load_jc, parse_jc, JcFile};
+use cutcal_io::material_file::{load_material, parse_material, MaterialFile};
+use cutcal_io::tests_csv::{load_tests, parse_tests};
 use cutcal_model::{CuttingTest, JcParams};
 
 use crate::errors::{face, FaceResult};

@@ -25,7 +25,7 @@ use cutcal_model::CuttingTest;
 use serde::Serialize;
 
 use super::identify::{jc_bounds, DpzdIdentifyReport, DpzdSettings};
-use crate::input::material_file::MaterialFile;
+use cutcal_io::material_file::MaterialFile;
 
 /// Bootstrap options of `cutcal identify`.
 #[derive(Debug, Clone, clap::Args)]

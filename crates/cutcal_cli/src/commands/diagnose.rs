@@ -15,12 +15,12 @@ use cutcal_diagnose::{
 };
 use cutcal_model::{JcParams, Material};
 
-use crate::input::jc_file::load_jc;
-use crate::input::material_file::{load_material, MaterialFile};
-use crate::input::simulation_csv::load_simulation;
-use crate::input::tests_csv::load_tests;
-use crate::output::write_atomic;
 use crate::report::svg::{Plot, Series};
+use cutcal_io::jc_file::load_jc;
+use cutcal_io::material_file::{load_material, MaterialFile};
+use cutcal_io::output::write_atomic;
+use cutcal_io::simulation_csv::load_simulation;
+use cutcal_io::tests_csv::load_tests;
 
 /// Forward model of Mode B.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

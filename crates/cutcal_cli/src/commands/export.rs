@@ -14,12 +14,12 @@ use cutcal_export::{
     STANDARD_PLASTIC_STRAINS,
 };
 
-use crate::input::jc_file::load_jc;
-use crate::input::tests_csv::load_tests;
+use cutcal_io::jc_file::load_jc;
+use cutcal_io::tests_csv::load_tests;
 use cutcal_model::{JcParams, Material};
 
-use crate::input::material_file::{load_material, InterfaceSection, MaterialFile};
-use crate::output::write_atomic;
+use cutcal_io::material_file::{load_material, InterfaceSection, MaterialFile};
+use cutcal_io::output::write_atomic;
 
 /// Which cards to write.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -231,7 +231,7 @@ pub fn run(args: &ExportArgs) -> Result<()> {
             for p in &written {
                 let _ = std::fs::remove_file(p);
             }
-            return Err(e);
+            return Err(e.into());
         }
         written.push(path);
     }

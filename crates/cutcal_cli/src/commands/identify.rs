@@ -13,9 +13,9 @@ use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState, ZoneSol
 use cutcal_model::{CuttingTest, RateTerm};
 use serde::Serialize;
 
-use crate::input::material_file::{load_material, MaterialFile};
-use crate::input::tests_csv::{load_tests_measuring, MeasuredColumn};
-use crate::output::write_atomic;
+use cutcal_io::material_file::{load_material, MaterialFile};
+use cutcal_io::output::write_atomic;
+use cutcal_io::tests_csv::{load_tests_measuring, MeasuredColumn};
 
 /// Which DPZD model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize, serde::Deserialize)]
@@ -135,7 +135,7 @@ pub struct IdentifyArgs {
 }
 
 /// JC parameters in report units: the JC file form (MPa, degC), without a source in reports.
-pub type JcReport = crate::input::jc_file::JcFile;
+pub type JcReport = cutcal_io::jc_file::JcFile;
 
 /// The machine-readable result of a DPZD identification.
 #[derive(Debug, Clone, Serialize)]
@@ -482,7 +482,7 @@ pub fn fields_csv(zone: &ZoneSolution, n: usize) -> Result<String> {
 
 /// A JC file (TOML) for an identified set.
 pub fn jc_toml(jc: &cutcal_model::JcParams, source: String) -> Result<String> {
-    Ok(toml::to_string(&crate::input::jc_file::JcFile::from_params(jc, Some(source)))?)
+    Ok(toml::to_string(&cutcal_io::jc_file::JcFile::from_params(jc, Some(source)))?)
 }
 
 /// Resolves CLI arguments into settings for `mf`.

@@ -21,8 +21,8 @@ use cutcal_model::oxley::Physics;
 
 use crate::commands::identify::jc_bounds;
 use crate::commands::predict::oxley_options;
-use crate::input::material_file::load_material;
-use crate::input::tests_csv::{load_tests_measuring, MeasuredColumn};
+use cutcal_io::material_file::load_material;
+use cutcal_io::tests_csv::{load_tests_measuring, MeasuredColumn};
 
 /// Arguments of `cutcal identify --method oxley` (the dispatcher passes them through).
 #[derive(Debug, Clone, clap::Args)]

@@ -19,9 +19,9 @@ use cutcal_model::oxley::{self, CuttingConditions, OxleyOptions, OxleyPrediction
 use cutcal_model::{CuttingTest, ModelError};
 use serde::Serialize;
 
-use crate::input::jc_file::load_jc;
-use crate::input::material_file::load_material;
-use crate::input::tests_csv::load_tests;
+use cutcal_io::jc_file::load_jc;
+use cutcal_io::material_file::load_material;
+use cutcal_io::tests_csv::load_tests;
 
 /// Arguments of `cutcal predict`.
 #[derive(Debug, Clone, clap::Args)]

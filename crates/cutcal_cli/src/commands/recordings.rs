@@ -14,10 +14,10 @@ use anyhow::{bail, Context, Result};
 use cutcal_signal::{analyse, Analysis, AnalysisConfig};
 use serde::Serialize;
 
-use crate::input::signal_csv::{read_signal, ChannelMap, SignalFile};
-use crate::input::tests_csv::load_tests;
-use crate::output::write_atomic;
 use crate::report::svg::{Plot, Series};
+use cutcal_io::output::write_atomic;
+use cutcal_io::signal_csv::{read_signal, ChannelMap, SignalFile};
+use cutcal_io::tests_csv::load_tests;
 
 /// Arguments of `cutcal recordings`.
 #[derive(Debug, Clone, clap::Args)]

@@ -11,11 +11,11 @@ use cutcal_model::JcParams;
 use serde::{Deserialize, Serialize};
 
 use super::identify::{identify_dpzd, pick_test, DpzdIdentifyReport, DpzdOutcome, DpzdSettings, JcReport, ModelChoice};
-use crate::input::material_file::{load_material, MaterialFile};
-use crate::input::tests_csv::{parse_tests_with_columns, Columns, MeasuredColumn};
-use crate::input::{parse_toml, read_text};
-use crate::output::StagedDir;
 use crate::report::plots;
+use cutcal_io::material_file::{load_material, MaterialFile};
+use cutcal_io::output::StagedDir;
+use cutcal_io::tests_csv::{parse_tests_with_columns, Columns, MeasuredColumn};
+use cutcal_io::{parse_toml, read_text};
 
 /// Arguments of `cutcal run`.
 #[derive(Debug, Clone, clap::Args)]
@@ -240,7 +240,7 @@ pub fn run_project(project_path: &Path, out: &Path, quiet: bool) -> Result<Proje
         }
     };
     let reference_jc =
-        project.reference_jc.as_ref().map(|p| crate::input::jc_file::load_jc(&resolve(base, p))).transpose()?;
+        project.reference_jc.as_ref().map(|p| cutcal_io::jc_file::load_jc(&resolve(base, p))).transpose()?;
     let tables: Option<toml::Table> = project
         .paper_tables
         .as_ref()

@@ -13,9 +13,9 @@ use serde::Serialize;
 
 use super::diagnose::{diagnose_files, DiagnoseArgs, ForwardModel};
 use super::recordings::{plot, reduce_signals, TestSummary};
-use crate::input::signal_csv::ChannelMap;
-use crate::input::tests_csv::{parse_tests_with_columns, Columns};
-use crate::output::StagedDir;
+use cutcal_io::output::StagedDir;
+use cutcal_io::signal_csv::ChannelMap;
+use cutcal_io::tests_csv::{parse_tests_with_columns, Columns};
 
 /// The rows of a signals project: the reduction's output CSV, parsed.
 #[derive(Debug)]

@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use cutcal_cli::input::jc_file::JcFile;
-use cutcal_cli::input::material_file::MaterialFile;
+use cutcal_io::jc_file::JcFile;
+use cutcal_io::material_file::MaterialFile;
 use cutcal_model::CuttingTest;
 use numpy::PyArray1;
 use pyo3::prelude::*;
