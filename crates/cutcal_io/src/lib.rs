@@ -55,7 +55,8 @@ impl fmt::Display for InputError {
 impl std::error::Error for InputError {}
 
 impl InputError {
-    pub(crate) fn new(
+    /// An error at `file`, `line`, `field` with the offending `value` and the `reason`.
+    pub fn new(
         file: &Path,
         line: Option<usize>,
         field: &str,
