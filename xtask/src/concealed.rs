@@ -92,7 +92,7 @@ fn diagnose(recordings: &Path, simulation: &Path) -> Result<serde_json::Value> {
         "--json".as_ref(),
     ];
     let cli = Cli::try_parse_from(argv).context("building the diagnose arguments")?;
-    let report = cutcal_cli::commands::diagnose::diagnose_files(&cli.args)?;
+    let report = cutcal_report::diagnose::diagnose_files(&cli.args.request())?;
     Ok(serde_json::to_value(&report)?)
 }
 

@@ -26,9 +26,10 @@ pub fn run(flags: &PipelineFlags) -> Result<()> {
     let mut summary = Vec::new();
     let bar = cutcal_cli::progress::bar(projects.len() as u64, "pipeline projects", flags.quiet);
     for p in &projects {
-        let project = cutcal_cli::commands::run::load_project(p)?;
+        let project = cutcal_report::project::load_project(p)?;
         let out = staged.path(&project.name);
-        let report = cutcal_cli::commands::run::run_project(p, &out, flags.quiet)
+        let progress = cutcal_cli::progress::Terminal::new(flags.quiet);
+        let report = cutcal_report::stages::run_project(p, &out, &progress)
             .with_context(|| format!("project {}", p.display()))?;
         summary.push(report);
         bar.inc(1);

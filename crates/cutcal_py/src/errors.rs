@@ -2,6 +2,7 @@
 //! CLI's message (`cutcal ...` prints `error: {e:#}`; Python raises the text after `error: `).
 
 use cutcal_io::InputError;
+use cutcal_report::ErrorKind as ReportKind;
 
 /// Which Python exception class an error becomes (all derive from `cutcal.CutcalError`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -39,6 +40,17 @@ impl std::error::Error for FaceError {}
 
 /// The kind of one error in a chain, if it is one of the library's typed errors.
 fn kind_of(e: &(dyn std::error::Error + 'static)) -> Option<ErrorKind> {
+    if let Some(r) = e.downcast_ref::<cutcal_report::Error>() {
+        // The report library's error knows its typed cause under any context lines.
+        return match r.kind() {
+            ReportKind::Input => Some(ErrorKind::Input),
+            ReportKind::Model => Some(ErrorKind::Model),
+            ReportKind::Ident => Some(ErrorKind::Ident),
+            ReportKind::Export => Some(ErrorKind::Export),
+            ReportKind::Diagnose => Some(ErrorKind::Diagnose),
+            ReportKind::Other => None,
+        };
+    }
     if e.is::<InputError>() {
         Some(ErrorKind::Input)
     } else if e.is::<cutcal_ident::IdentError>() {

@@ -3,7 +3,7 @@
 //! One library, two thin faces: this crate adds no physics. Each module is an adapter for one
 //! face of the Python API that converts types and calls the library (`cutcal_model`,
 //! `cutcal_ident`, `cutcal_export`, `cutcal_diagnose`) through the same entry points the CLI uses
-//! (`cutcal_cli::{input, commands}`):
+//! (`cutcal_io` for files, `cutcal_report` for the work):
 //!
 //! - [`types`]: `Material`, `JcParams`, `CuttingTest`, `read_tests` (the CLI's readers);
 //! - [`identify`]: the DPZD identification of paper Eq 15 (Secs 3-4);

@@ -3,7 +3,7 @@
 //!
 //! A value given from Python (`JcParams(a_mpa=...)`, `CuttingTest(speed_m_min=...)`) is written as
 //! the one-record file the CLI would read (TOML for a JC set, one CSV row for a test) and parsed by
-//! `cutcal_cli::input`; the pseudo-file name (`<JcParams>`, `<CuttingTest>`) stands in for the path
+//! `cutcal_io`; the pseudo-file name (`<JcParams>`, `<CuttingTest>`) stands in for the path
 //! in a located error. No unit conversion or validation is written twice.
 
 use std::fmt::Write as _;

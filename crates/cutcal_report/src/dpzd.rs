@@ -3,14 +3,11 @@
 //! self-consistent with the identified set), and the h-sensitivity table. The CLI's `identify`,
 //! `cutcal run` and the Python module all call [`identify_dpzd`].
 
-use std::path::Path;
-
 use cutcal_ident::{
     identify_converged, identify_from_zone_with, ConvergedOptions, JcBounds, JcConstants, JcIdentification,
     MultistartOptions,
 };
-use cutcal_io::material_file::{load_material, MaterialFile};
-use cutcal_io::tests_csv::{load_tests_measuring, MeasuredColumn};
+use cutcal_io::material_file::MaterialFile;
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState, ZoneSolution};
 use cutcal_model::{CuttingTest, RateTerm};
 use serde::Serialize;
@@ -54,7 +51,6 @@ impl Preset {
         }
     }
 }
-
 
 /// Settings of one DPZD identification (resolved from CLI or project file).
 #[derive(Debug, Clone)]
@@ -171,12 +167,11 @@ pub fn identify_dpzd(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSetti
             }
             Err(e) => {
                 let o = identify_dpzd_at(mf, test, settings)?;
-                let source =
-                    format!(
-                        "{} mm default: the forward model gave no zone thickness ({})",
-                        settings.h_m * 1e3,
-                        e.chain_text()
-                    );
+                let source = format!(
+                    "{} mm default: the forward model gave no zone thickness ({})",
+                    settings.h_m * 1e3,
+                    e.chain_text()
+                );
                 (o, source, vec![settings.h_m * 1e3])
             }
         }
@@ -343,7 +338,8 @@ impl DpzdRequest {
             (None, Some(d)) => d.r,
             (None, None) => bail!("{}: no [dpzd] r given; pass --r", mf.path.display()),
         };
-        let mut rho_cp = args.rho_cp_original.or(mf.dpzd.as_ref().map(|d| d.rho_cp_original_j_per_cm3_k)).unwrap_or(3.5325);
+        let mut rho_cp =
+            args.rho_cp_original.or(mf.dpzd.as_ref().map(|d| d.rho_cp_original_j_per_cm3_k)).unwrap_or(3.5325);
         let (h_mm, points) = match args.preset {
             Preset::Paper => {
                 if args.h_mm.is_some_and(|h| h != 0.1) || args.points.is_some_and(|n| n != 51) {
@@ -397,76 +393,4 @@ pub fn pick_test<'a>(
         let ids: Vec<&str> = tests.iter().map(|t| t.id.as_str()).collect();
         format!("{}: field `test`: no test with id '{id}' (ids: {ids:?})", tests_path.display())
     })
-}
-
-/// A DPZD identification of one test of a tests file (what `cutcal identify` computes before it
-/// prints), with the Monte-Carlo spread when the bootstrap request asks for it.
-#[derive(Debug, Clone)]
-pub struct IdentifiedTest {
-    /// The material file.
-    pub material: MaterialFile,
-    /// The test identified from.
-    pub test: CuttingTest,
-    /// The resolved settings.
-    pub settings: DpzdSettings,
-    /// The identification.
-    pub outcome: DpzdOutcome,
-    /// The bootstrap, when asked for.
-    pub bootstrap: Option<crate::bootstrap::BootstrapOutcome>,
-}
-
-/// Reads the material and the tests, picks the test (`test`, else the material's
-/// `dpzd.identification_test`), identifies it and runs the bootstrap when `boot` asks for it
-/// (before anything is written, so a failed bootstrap leaves nothing behind).
-///
-/// Returns an error if a file is malformed (located), the tests lack Fc, Ft or tc, the test is not
-/// there, the request is refused, or the identification or the bootstrap fails.
-pub fn identify_test(
-    material: &Path,
-    tests: &Path,
-    test: Option<&str>,
-    req: &DpzdRequest,
-    boot: &crate::bootstrap::BootstrapRequest,
-) -> Result<IdentifiedTest> {
-    let mf = load_material(material)?;
-    let all = load_tests_measuring(
-        tests,
-        &[MeasuredColumn::CuttingForce, MeasuredColumn::FeedForce, MeasuredColumn::ChipThickness],
-        "the DPZD identification (paper Eq 15) needs the measured Fc, Ft and tc",
-    )?;
-    let test = pick_test(&all, test, &mf, tests)?.clone();
-    let settings = req.settings(&mf)?;
-    let outcome = identify_dpzd(&mf, &test, &settings)?;
-    let bootstrap = crate::bootstrap::run_bootstrap(boot, &mf, &test, &outcome.settings_at_h_used(&settings))?;
-    Ok(IdentifiedTest { material: mf, test, settings, outcome, bootstrap })
-}
-
-impl IdentifiedTest {
-    /// The identified set as a JC file (TOML) whose `source` names the run.
-    pub fn jc_toml(&self) -> Result<String> {
-        let r = &self.outcome.report;
-        let src = format!(
-            "cutcal {} identify: {} test {} ({:?} DPZD)",
-            env!("CARGO_PKG_VERSION"),
-            r.material,
-            r.test,
-            self.settings.model
-        );
-        crate::dpzd_report::jc_toml(&self.outcome.identification.jc, src)
-    }
-
-    /// The JSON document of `cutcal identify --json` (with `bootstrap` when there is one).
-    pub fn json(&self) -> Result<String> {
-        crate::bootstrap::report_json(&self.outcome.report, self.bootstrap.as_ref())
-    }
-
-    /// The readable report of `cutcal identify` (with the bootstrap table when there is one).
-    #[must_use]
-    pub fn text(&self) -> String {
-        let mut s = crate::dpzd_report::render_table(&self.outcome.report);
-        if let Some(b) = &self.bootstrap {
-            s.push_str(&crate::bootstrap::render_bootstrap(b));
-        }
-        s
-    }
 }

@@ -1,14 +1,18 @@
 //! The result of a DPZD identification as the CLI prints it and `cutcal run` stores it: the JSON
 //! report (`cutcal identify --json`), the readable table, the zone fields CSV (the data of the
-//! paper's Fig 4) and the JC file of an identified set.
+//! paper's Fig 4) and the JC file of an identified set; and [`identify_test`], what
+//! `cutcal identify` computes from its files before it prints.
 
 use std::fmt::Write as _;
+use std::path::Path;
 
+use cutcal_io::material_file::{load_material, MaterialFile};
+use cutcal_io::tests_csv::{load_tests_measuring, MeasuredColumn};
 use cutcal_model::dpzd::ZoneSolution;
-use cutcal_model::RateTerm;
+use cutcal_model::{CuttingTest, RateTerm};
 use serde::Serialize;
 
-use crate::dpzd::{ModelChoice, Preset};
+use crate::dpzd::{identify_dpzd, pick_test, DpzdOutcome, DpzdRequest, DpzdSettings, ModelChoice, Preset};
 use crate::error::Result;
 
 /// JC parameters in report units: the JC file form (MPa, degC), without a source in reports.
@@ -209,4 +213,76 @@ pub fn render_table(r: &DpzdIdentifyReport) -> String {
         }
     }
     s
+}
+
+/// A DPZD identification of one test of a tests file (what `cutcal identify` computes before it
+/// prints), with the Monte-Carlo spread when the bootstrap request asks for it.
+#[derive(Debug, Clone)]
+pub struct IdentifiedTest {
+    /// The material file.
+    pub material: MaterialFile,
+    /// The test identified from.
+    pub test: CuttingTest,
+    /// The resolved settings.
+    pub settings: DpzdSettings,
+    /// The identification.
+    pub outcome: DpzdOutcome,
+    /// The bootstrap, when asked for.
+    pub bootstrap: Option<crate::bootstrap::BootstrapOutcome>,
+}
+
+/// Reads the material and the tests, picks the test (`test`, else the material's
+/// `dpzd.identification_test`), identifies it and runs the bootstrap when `boot` asks for it
+/// (before anything is written, so a failed bootstrap leaves nothing behind).
+///
+/// Returns an error if a file is malformed (located), the tests lack Fc, Ft or tc, the test is not
+/// there, the request is refused, or the identification or the bootstrap fails.
+pub fn identify_test(
+    material: &Path,
+    tests: &Path,
+    test: Option<&str>,
+    req: &DpzdRequest,
+    boot: &crate::bootstrap::BootstrapRequest,
+) -> Result<IdentifiedTest> {
+    let mf = load_material(material)?;
+    let all = load_tests_measuring(
+        tests,
+        &[MeasuredColumn::CuttingForce, MeasuredColumn::FeedForce, MeasuredColumn::ChipThickness],
+        "the DPZD identification (paper Eq 15) needs the measured Fc, Ft and tc",
+    )?;
+    let test = pick_test(&all, test, &mf, tests)?.clone();
+    let settings = req.settings(&mf)?;
+    let outcome = identify_dpzd(&mf, &test, &settings)?;
+    let bootstrap = crate::bootstrap::run_bootstrap(boot, &mf, &test, &outcome.settings_at_h_used(&settings))?;
+    Ok(IdentifiedTest { material: mf, test, settings, outcome, bootstrap })
+}
+
+impl IdentifiedTest {
+    /// The identified set as a JC file (TOML) whose `source` names the run.
+    pub fn jc_toml(&self) -> Result<String> {
+        let r = &self.outcome.report;
+        let src = format!(
+            "cutcal {} identify: {} test {} ({:?} DPZD)",
+            env!("CARGO_PKG_VERSION"),
+            r.material,
+            r.test,
+            self.settings.model
+        );
+        jc_toml(&self.outcome.identification.jc, src)
+    }
+
+    /// The JSON document of `cutcal identify --json` (with `bootstrap` when there is one).
+    pub fn json(&self) -> Result<String> {
+        crate::bootstrap::report_json(&self.outcome.report, self.bootstrap.as_ref())
+    }
+
+    /// The readable report of `cutcal identify` (with the bootstrap table when there is one).
+    #[must_use]
+    pub fn text(&self) -> String {
+        let mut s = render_table(&self.outcome.report);
+        if let Some(b) = &self.bootstrap {
+            s.push_str(&crate::bootstrap::render_bootstrap(b));
+        }
+        s
+    }
 }

@@ -218,8 +218,16 @@ pub fn joint_fit(
         tool_condition: req.tool_condition,
     };
     let constants = JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };
-    identify_oxley(&mf.material, tests, &bounds, class, constants, &options, &MultistartOptions::new(req.starts, req.seed))
-        .with_context(|| format!("joint Oxley identification from {}", tests_path.display()))
+    identify_oxley(
+        &mf.material,
+        tests,
+        &bounds,
+        class,
+        constants,
+        &options,
+        &MultistartOptions::new(req.starts, req.seed),
+    )
+    .with_context(|| format!("joint Oxley identification from {}", tests_path.display()))
 }
 
 /// Reads the material and the tests (Fc and Ft measured; tc where measured) and runs the joint

@@ -6,7 +6,7 @@
 //!   h-sensitivity table), [`dpzd_report`] (JSON report, table, zone fields, JC file),
 //!   [`bootstrap`] (Monte-Carlo spread);
 //! - the joint Oxley identification over every measured test: [`joint`];
-//! - predictions with the extended Oxley model: [`predict`];
+//! - predictions with the extended Oxley model: [`predict`], [`predict_rows`] (rows, JSON, table);
 //! - FE cards: [`export`]; the discrepancy diagnosis: [`diagnose`]; raw force signals:
 //!   [`recordings`];
 //! - `cutcal run PROJECT.toml` as named stages: [`project`] (the project file and its
@@ -28,6 +28,7 @@ pub mod export;
 pub mod joint;
 pub mod plots;
 pub mod predict;
+pub mod predict_rows;
 pub mod project;
 pub mod project_report;
 pub mod recordings;

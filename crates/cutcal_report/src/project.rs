@@ -279,7 +279,8 @@ mod tests {
 
     #[test]
     fn compare_entries_resolve_their_tables_and_models() {
-        let (_d, p) = project("[[compare]]\nname = \"Table 4 enhanced\"\ntable = \"table4.enhanced\"\nmodel = \"enhanced\"");
+        let (_d, p) =
+            project("[[compare]]\nname = \"Table 4 enhanced\"\ntable = \"table4.enhanced\"\nmodel = \"enhanced\"");
         let c = load_checked(&p).unwrap();
         let t = c.tables.as_ref().unwrap();
         assert_eq!(table_value(t, &c.project.compare[0].table, "a_mpa"), Some(589.0));

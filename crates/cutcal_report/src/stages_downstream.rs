@@ -13,9 +13,9 @@ use crate::predict::{predict_rows, PredictRow};
 use crate::project::table_value;
 use crate::project_report::FeComparison;
 use crate::run_steps::{self, ProjectDiagnosis};
+use crate::stages::Identified;
 use crate::stages::{Inputs, Output};
 use crate::svg::{Plot, Series};
-use crate::stages::Identified;
 use crate::Progress;
 
 /// The predict stage's output.
@@ -179,8 +179,7 @@ pub fn diagnose(
         Some(_) => out.staged.path(run_steps::MEASURED_TESTS),
         None => inp.tests_path.clone(),
     };
-    let (d, names) =
-        run_steps::diagnosis_step(out.staged, &inp.project.name, inp.mf.path.clone(), rows, (src, jc))?;
+    let (d, names) = run_steps::diagnosis_step(out.staged, &inp.project.name, inp.mf.path.clone(), rows, (src, jc))?;
     out.files.extend(names);
     Ok(Diagnosed { diagnosis: Some(d), skipped: None })
 }
