@@ -7,6 +7,7 @@
 //!
 //! - [`types`]: `Material`, `JcParams`, `CuttingTest`, `read_tests` (the CLI's readers);
 //! - [`identify`]: the DPZD identification of paper Eq 15 (Secs 3-4);
+//! - [`joint`]: the joint Oxley identification over every measured test, with its verdict;
 //! - [`predict`]: the extended Oxley model (Oxley 1989; Lalwani et al. 2009), per test and vectorised;
 //! - [`export`]: FE cards;
 //! - [`diagnose`]: discrepancy discovery;
@@ -20,6 +21,7 @@ pub mod diagnose;
 pub mod errors;
 pub mod export;
 pub mod identify;
+pub mod joint;
 pub mod predict;
 pub mod types;
 
