@@ -6,7 +6,8 @@
 use cutcal_io::material_file::MaterialFile;
 use cutcal_model::{CuttingTest, JcParams};
 use cutcal_report::bootstrap::{report_json, run_bootstrap, BootstrapRequest};
-use cutcal_report::dpzd::{identify_dpzd, DpzdRequest, ModelChoice, Preset};
+use cutcal_report::dpzd::{identify_dpzd, ModelChoice, Preset};
+use cutcal_report::identify::DpzdRequest;
 
 use crate::errors::{face, FaceResult};
 

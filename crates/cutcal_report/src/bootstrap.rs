@@ -25,8 +25,7 @@ use serde::Serialize;
 
 use cutcal_io::material_file::MaterialFile;
 
-use crate::dpzd::{jc_bounds, DpzdSettings, Preset};
-use crate::dpzd_report::DpzdIdentifyReport;
+use crate::dpzd::{jc_bounds, DpzdIdentifyReport, DpzdSettings, Preset};
 use crate::error::{Context, Result};
 
 /// Bootstrap options of an identification (the CLI's `--bootstrap*` flags, Python's keywords).

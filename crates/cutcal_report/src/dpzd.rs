@@ -12,9 +12,105 @@ use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState, ZoneSol
 use cutcal_model::{CuttingTest, RateTerm};
 use serde::Serialize;
 
-use crate::bail;
-use crate::dpzd_report::{DpzdIdentifyReport, HSensitivityRow, JcReport};
 use crate::error::{Context, Error, Result};
+
+/// JC parameters in report units: the JC file form (MPa, degC), without a source in reports.
+pub type JcReport = cutcal_io::jc_file::JcFile;
+
+/// The machine-readable result of a DPZD identification.
+#[derive(Debug, Clone, Serialize)]
+pub struct DpzdIdentifyReport {
+    /// Material name.
+    pub material: String,
+    /// Test id.
+    pub test: String,
+    /// Model variant.
+    pub model: ModelChoice,
+    /// Identification preset.
+    pub preset: Preset,
+    /// What the preset means (stated in every report).
+    pub preset_note: String,
+    /// Rate term of the identified law.
+    pub rate_term: RateTerm,
+    /// Quadrature nodes of the converged rule (`None` for the paper preset).
+    pub quadrature_nodes: Option<usize>,
+    /// Zone thickness, mm.
+    pub h_mm: f64,
+    /// Exponent r.
+    pub r: f64,
+    /// Fit points.
+    pub points: usize,
+    /// Shear angle from the chip ratio, deg.
+    pub shear_angle_deg: f64,
+    /// Maximum shear stress (Eq 9), MPa.
+    pub tau_max_mpa: f64,
+    /// Maximum effective strain 2 gamma_AB / sqrt(3).
+    pub max_effective_strain: f64,
+    /// Shear-plane strain rate (effective), 1/s.
+    pub max_effective_strain_rate_per_s: f64,
+    /// Shear-plane (AB) temperature, degC.
+    pub t_ab_c: f64,
+    /// Exit (EF) temperature, degC.
+    pub t_ef_c: f64,
+    /// Exit shear strength, MPa.
+    pub tau0_ef_mpa: f64,
+    /// Fixed-point iterations.
+    pub iterations: usize,
+    /// Identified JC set.
+    pub jc: JcReport,
+    /// Eq 15 objective, MPa.
+    pub objective_mpa: f64,
+    /// RMS residual, MPa.
+    pub rms_mpa: f64,
+    /// Parameters at a bound.
+    pub at_bounds: Vec<String>,
+    /// Free parameters (order of covariance/correlation).
+    pub free: Vec<String>,
+    /// Linearised `s^2 (J^T J)^-1` standard errors of the free parameters (A, B in MPa). Kept for
+    /// the record only: the residuals are deterministic model misfit, not noise, so this is NOT an
+    /// uncertainty (issue 11); the spread comes from the Monte-Carlo propagation.
+    pub std_errors: Option<Vec<f64>>,
+    /// Correlation matrix of the free parameters.
+    pub correlation: Option<Vec<Vec<f64>>>,
+    /// Covariance matrix of the free parameters.
+    pub covariance: Option<Vec<Vec<f64>>>,
+    /// Condition number of J^T J on the free set.
+    pub condition_number: Option<f64>,
+    /// Multistart starts.
+    pub starts: usize,
+    /// Starts reaching the best minimum.
+    pub starts_at_best: usize,
+    /// Index of the best start.
+    pub best_start: usize,
+    /// Starts that stopped at the LM iteration cap (excluded from the best; if every start does,
+    /// the identification fails with a typed non-convergence).
+    pub unconverged_starts: usize,
+    /// Multistart seed.
+    pub seed: u64,
+    /// Residual field at the fit points: x (mm) and JC - DPZD stress (MPa).
+    pub residual_field: Vec<[f64; 2]>,
+    /// Where h comes from (user, paper preset, or the forward model's l_AB/C0).
+    pub h_source: String,
+    /// The h values of the forward-model fixed point, mm (one value when h was given).
+    pub h_history_mm: Vec<f64>,
+    /// A, B and C identified over h/2..2h around the h used.
+    pub h_sensitivity: Vec<HSensitivityRow>,
+}
+
+/// One row of the h-sensitivity table.
+#[derive(Debug, Clone, Serialize)]
+pub struct HSensitivityRow {
+    /// Zone thickness, mm.
+    pub h_mm: f64,
+    /// Identified A, MPa (`None`: not available, see `note`).
+    pub a_mpa: Option<f64>,
+    /// Identified B, MPa.
+    pub b_mpa: Option<f64>,
+    /// Identified C.
+    pub c: Option<f64>,
+    /// Why a value is not available.
+    pub note: Option<String>,
+}
 
 /// Which DPZD model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
@@ -281,97 +377,6 @@ fn identify_dpzd_at(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSettin
         h_sensitivity: Vec::new(),
     };
     Ok(DpzdOutcome { zone, identification: id, report })
-}
-
-/// Options of one DPZD identification, as the CLI's `identify` flags and the Python keywords
-/// give them; [`DpzdRequest::settings`] resolves them against a material file.
-#[derive(Debug, Clone, PartialEq)]
-pub struct DpzdRequest {
-    /// DPZD model variant.
-    pub model: ModelChoice,
-    /// Identification preset.
-    pub preset: Preset,
-    /// Zone thickness h, mm (`None`: the forward model's for `converged`, 0.1 for `paper`).
-    pub h_mm: Option<f64>,
-    /// Uniform interior fit points N of Eq 15 (`paper` preset only; it forces 51).
-    pub points: Option<usize>,
-    /// Strain-rate exponent r of Eq 2 (default: the material's `dpzd.r`).
-    pub r: Option<f64>,
-    /// Multistart starts (default 32).
-    pub starts: Option<usize>,
-    /// Multistart seed.
-    pub seed: u64,
-    /// Constant rho*Cp of the original model, J/(cm^3 K) (default: the material's, else 3.5325).
-    pub rho_cp_original: Option<f64>,
-    /// Enhanced fixed point tolerance on the exit temperature, K.
-    pub tolerance_c: f64,
-    /// Enhanced fixed point iteration cap.
-    pub max_iterations: usize,
-}
-
-impl Default for DpzdRequest {
-    fn default() -> Self {
-        Self {
-            model: ModelChoice::Enhanced,
-            preset: Preset::Converged,
-            h_mm: None,
-            points: None,
-            r: None,
-            starts: None,
-            seed: 1,
-            rho_cp_original: None,
-            tolerance_c: 1e-6,
-            max_iterations: 50,
-        }
-    }
-}
-
-impl DpzdRequest {
-    /// Resolves the request into settings for `mf`.
-    ///
-    /// Returns an error if r is neither given nor in the material, if the `paper` preset is asked
-    /// for other h or N than its own, or if h is not a positive number.
-    pub fn settings(&self, mf: &MaterialFile) -> Result<DpzdSettings> {
-        let args = self;
-        let r = match (args.r, &mf.dpzd) {
-            (Some(r), _) => r,
-            (None, Some(d)) => d.r,
-            (None, None) => bail!("{}: no [dpzd] r given; pass --r", mf.path.display()),
-        };
-        let mut rho_cp =
-            args.rho_cp_original.or(mf.dpzd.as_ref().map(|d| d.rho_cp_original_j_per_cm3_k)).unwrap_or(3.5325);
-        let (h_mm, points) = match args.preset {
-            Preset::Paper => {
-                if args.h_mm.is_some_and(|h| h != 0.1) || args.points.is_some_and(|n| n != 51) {
-                    bail!("--preset paper fixes h = 0.1 mm and N = 51 (the choices that reproduce Table 4); use --preset converged for other values");
-                }
-                rho_cp = 3.5325;
-                (0.1, 51)
-            }
-            Preset::Converged => {
-                if args.points.is_some() {
-                    bail!("--points applies to --preset paper only: the converged preset integrates over the zone");
-                }
-                (args.h_mm.unwrap_or(0.1), 51)
-            }
-        };
-        let h_from_forward_model = args.preset == Preset::Converged && args.h_mm.is_none();
-        if !(h_mm.is_finite() && h_mm > 0.0) {
-            bail!("--h-mm must be a positive number of mm, got {h_mm}");
-        }
-        Ok(DpzdSettings {
-            model: args.model,
-            preset: args.preset,
-            h_m: h_mm * 1e-3,
-            h_from_forward_model,
-            r,
-            points,
-            rho_cp_original_j_per_m3_k: rho_cp * 1e6,
-            tolerance_c: args.tolerance_c,
-            max_iterations: args.max_iterations,
-            multistart: MultistartOptions::new(args.starts.unwrap_or(32), args.seed),
-        })
-    }
 }
 
 /// Finds test `id` (or the material's identification test) in `tests`.

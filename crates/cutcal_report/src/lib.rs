@@ -3,8 +3,8 @@
 //! the result, so that both compute the same thing:
 //!
 //! - one DPZD identification (paper Eq 15): [`dpzd`] (settings, h from the forward model, the
-//!   h-sensitivity table), [`dpzd_report`] (JSON report, table, zone fields, JC file),
-//!   [`bootstrap`] (Monte-Carlo spread);
+//!   h-sensitivity table, the JSON report), [`dpzd_report`] (table, zone fields, JC file),
+//!   [`bootstrap`] (Monte-Carlo spread), [`identify`] (the command's request and entry point);
 //! - the joint Oxley identification over every measured test: [`joint`];
 //! - predictions with the extended Oxley model: [`predict`], [`predict_rows`] (rows, JSON, table);
 //! - FE cards: [`export`]; the discrepancy diagnosis: [`diagnose`]; raw force signals:
@@ -25,6 +25,7 @@ pub mod dpzd;
 pub mod dpzd_report;
 pub mod error;
 pub mod export;
+pub mod identify;
 pub mod joint;
 pub mod plots;
 pub mod predict;

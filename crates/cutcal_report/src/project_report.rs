@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::dpzd_report::{DpzdIdentifyReport, JcReport};
+use crate::dpzd::{DpzdIdentifyReport, JcReport};
 
 /// The paper's FE result for a test beside cutcal's forward prediction (Table 6).
 #[derive(Debug, Clone, Serialize)]

@@ -15,8 +15,8 @@ use cutcal_io::read_text;
 use cutcal_io::tests_csv::{parse_tests_with_columns, Columns, MeasuredColumn};
 use cutcal_model::{CuttingTest, JcParams};
 
-use crate::dpzd::{identify_dpzd, pick_test, DpzdOutcome, DpzdSettings, Preset};
-use crate::dpzd_report::{fields_csv, jc_toml, JcReport};
+use crate::dpzd::{identify_dpzd, pick_test, DpzdOutcome, DpzdSettings, JcReport, Preset};
+use crate::dpzd_report::{fields_csv, jc_toml};
 use crate::error::{Context, Result};
 use crate::project::{load_checked, resolve, table_value, CheckedProject, ProjectFile};
 use crate::project_report::{Comparison, ProjectReport};

@@ -8,8 +8,8 @@ use std::path::PathBuf;
 use anyhow::Result;
 use cutcal_io::output::write_atomic;
 use cutcal_report::bootstrap::BootstrapRequest;
-use cutcal_report::dpzd::{DpzdRequest, ModelChoice, Preset};
-use cutcal_report::dpzd_report::identify_test;
+use cutcal_report::dpzd::{ModelChoice, Preset};
+use cutcal_report::identify::{identify_test, DpzdRequest};
 use cutcal_report::joint::{joint_files, parse_fix, JointRequest};
 
 /// Identification method.
