@@ -28,7 +28,7 @@ pub struct JointOutput {
     pub determined: bool,
     /// Effective rank of the scaled Jacobian (`None` when it could not be computed).
     pub effective_rank: Option<usize>,
-    /// Number of free parameters.
+    /// Number of free parameters (box width > 0; the CLI's "effective rank R of N").
     pub free_parameters: usize,
     /// Condition number of the scaled Jacobian (`None`: infinite or not computed).
     pub condition_number: Option<f64>,
@@ -59,7 +59,7 @@ pub fn joint(mf: &MaterialFile, tests: &[CuttingTest], req: &JointRequest) -> Fa
         status,
         determined,
         effective_rank: id.identifiability.as_ref().map(|a| a.effective_rank),
-        free_parameters: id.statistics.free.len(),
+        free_parameters: id.identifiability.as_ref().map_or(id.statistics.free.len(), |a| a.parameters.len()),
         condition_number: id.identifiability.as_ref().and_then(|a| a.condition_number),
         jc: determined.then_some(id.jc),
         best_fit: id.jc,

@@ -174,13 +174,6 @@ def test_cards_rendered_from_python_are_byte_identical_to_the_cli(tmp_path):
     assert (tmp_path / "py" / "c38_matml.xml").read_bytes() == (out / "c38_matml.xml").read_bytes()
 
 
-@pytest.mark.parametrize("material,tests", [
-    ("fixtures/bad/material_nan_melting.toml", C38_TESTS),
-    ("fixtures/bad/material_syntax_error.toml", C38_TESTS),
-    (C38, "fixtures/bad/tests_negative_force.csv"),
-    (C38, "fixtures/bad/tests_short_row.csv"),
-    (C38, "fixtures/bad/tests_non_utf8.csv"),
-])
 def test_contact_temperature_and_cutting_speed_give_the_clis_lsdyna_deck(tmp_path):
     out = tmp_path / "cli"
     run_cli("export", "--material", C38, "--jc", C38_JC, "--format", "lsdyna", "--out", out,
@@ -258,6 +251,13 @@ def test_material_from_keywords_equals_from_toml():
         cutcal.Material(**{**keys, "name": None})
 
 
+@pytest.mark.parametrize("material,tests", [
+    ("fixtures/bad/material_nan_melting.toml", C38_TESTS),
+    ("fixtures/bad/material_syntax_error.toml", C38_TESTS),
+    (C38, "fixtures/bad/tests_negative_force.csv"),
+    (C38, "fixtures/bad/tests_short_row.csv"),
+    (C38, "fixtures/bad/tests_non_utf8.csv"),
+])
 def test_bad_input_raises_the_clis_located_error(material, tests):
     proc = run_cli("identify", "--material", material, "--tests", tests, check=False)
     assert proc.returncode != 0
