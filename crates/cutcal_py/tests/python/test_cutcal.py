@@ -226,6 +226,34 @@ def test_joint_with_fixed_parameters_equals_the_cli():
         cutcal.joint(cutcal.Material.from_toml(AISI), [], fix={"q": 1.0})
 
 
+def test_joint_returns_the_set_when_determined_and_equals_the_cli(tmp_path):
+    # Six conditions around Ivester et al. 2000's (200 m/min, 0.15 mm, -7 deg, 1.6 mm) whose Fc, Ft
+    # and tc are cutcal's own predictions with the Jaspers & Dautzenberg 2002 set: with n, C and m
+    # fixed at that set, the data determine A and B, and the fit must give the set back.
+    m = cutcal.Material.from_toml(AISI)
+    jc = cutcal.JcParams.from_toml(AISI_JC)
+    speed = np.array([150.0, 200.0, 250.0, 300.0, 200.0, 200.0])
+    uncut = np.array([0.15, 0.15, 0.15, 0.15, 0.10, 0.30])
+    p = cutcal.predict_many(m, jc, speed, uncut, 1.6, -7.0)
+    assert p["converged"].all()
+    rows = ["test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm,ft_n_per_mm,chip_mm"]
+    for i in range(len(speed)):
+        rows.append(f"{i + 1},{float(speed[i])!r},{float(uncut[i])!r},1.6,-7,{float(p['fc_n_per_mm'][i])!r},"
+                    f"{float(p['ft_n_per_mm'][i])!r},{float(p['tc_mm'][i])!r}")
+    csv = tmp_path / "model_tests.csv"
+    csv.write_text("\n".join(rows) + "\n")
+    fix = {"n": jc.n, "c": jc.c, "m": jc.m}
+    args = ["identify", "--method", "oxley", "--material", AISI, "--tests", csv, "--starts", "2", "--json"]
+    for k, v in fix.items():
+        args += ["--fix", f"{k}={v!r}"]
+    cli = json.loads(run_cli(*args).stdout)
+    r = cutcal.joint(m, cutcal.read_tests(csv, as_frame=False), starts=2, fix=fix)
+    assert_close(r["report"], cli, rel=1e-12)
+    assert r["status"] == "determined" and r["determined"] and r["effective_rank"] == r["free_parameters"] == 2
+    assert math.isclose(r["jc"].a_mpa, cli["jc"]["a_pa"] / 1e6, rel_tol=1e-12)
+    assert math.isclose(r["jc"].a_mpa, jc.a_mpa, rel_tol=1e-6) and math.isclose(r["jc"].b_mpa, jc.b_mpa, rel_tol=1e-6)
+
+
 def test_material_from_keywords_equals_from_toml():
     import tomllib
 
