@@ -195,7 +195,6 @@ mod tests {
         )
         .unwrap();
         let text = table(&report);
-        println!("{text}");
         for (r, lalwani) in report.rows.iter().zip([576.0, 433.0, 1007.0, 773.0]) {
             let fc = r.fc_n.unwrap();
             assert!((fc / lalwani - 1.0).abs() < 0.05, "test {}: {fc} N vs {lalwani} N", r.test);

@@ -222,7 +222,7 @@ fn rewrite_tests_csv(path: &Path, shown: &str, summaries: &[TestSummary]) -> Res
         }
         w.write_record(&cells)?;
     }
-    let body = String::from_utf8(w.into_inner().map_err(|e| Error::invalid(e))?)?;
+    let body = String::from_utf8(w.into_inner().map_err(Error::invalid)?)?;
     Ok(format!("# written by cutcal recordings from {shown} (forces: steady-window means; *_sd_*: sample sd over the window)\n{body}"))
 }
 
