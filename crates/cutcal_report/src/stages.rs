@@ -11,8 +11,8 @@ use std::path::{Path, PathBuf};
 
 use cutcal_io::material_file::{load_material, MaterialFile};
 use cutcal_io::output::StagedDir;
-use cutcal_io::read_text;
 use cutcal_io::tests_csv::{parse_tests_with_columns, Columns, MeasuredColumn};
+use cutcal_io::{read_text, toml_key_line, InputError};
 use cutcal_model::{CuttingTest, JcParams};
 
 use crate::dpzd::{identify_dpzd, pick_test, DpzdOutcome, DpzdSettings, JcReport, Preset};
@@ -75,6 +75,8 @@ impl Inputs {
 
 /// Stage 1, read inputs: the material, the test rows (a signals project first reduces its raw
 /// signals into them, writing the reduction's files), the reference set.
+///
+/// Returns a located error if an input is malformed or the `[fe_check]` test is not a row.
 pub fn read_inputs(
     project_path: &Path,
     checked: CheckedProject,
@@ -98,6 +100,11 @@ pub fn read_inputs(
             (tests, columns, name, None)
         }
     };
+    if let Some(fe) = project.fe_check.as_ref().filter(|fe| !tests.iter().any(|t| t.id == fe.test)) {
+        let line = toml_key_line(&read_text(project_path)?, "fe_check.test");
+        let why = format!("no test with this id in {tests_name}");
+        return Err(InputError::new(project_path, line, "fe_check.test", &fe.test, why).into());
+    }
     let reference_jc =
         project.reference_jc.as_ref().map(|p| cutcal_io::jc_file::load_jc(&resolve(base, p))).transpose()?;
     Ok(Inputs { project, tables, mf, tests_path, tests, columns, tests_name, recordings, reference_jc })
@@ -340,4 +347,30 @@ fn dpzd_skip_reason(
         "; no JC set is available downstream"
     });
     why
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_fe_check_of_a_missing_test_is_located_in_the_project_file() {
+        let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures");
+        let dir = tempfile::tempdir().unwrap();
+        let project = dir.path().join("p.toml");
+        // The C38 files (paper Tables 2, 3, 6); test 9 is not a row of c38.csv.
+        let text = format!(
+            "name = \"p\"\nmaterial = {:?}\ntests = {:?}\npaper_tables = {:?}\n\n[fe_check]\ntitle = \"t\"\n\
+             test = \"9\"\nreference_label = \"r\"\npublished = [{{ table = \"table6.experiment\", source = \"e\" }}]\n",
+            fixtures.join("materials/c38.toml"),
+            fixtures.join("tests/c38.csv"),
+            fixtures.join("reference/paper_tables.toml"),
+        );
+        std::fs::write(&project, text).unwrap();
+        let staged = StagedDir::new(&dir.path().join("out")).unwrap();
+        let mut out = Output { staged: &staged, files: Vec::new() };
+        let checked = load_checked(&project).unwrap();
+        let e = read_inputs(&project, checked, &mut out, &crate::Quiet).unwrap_err().to_string();
+        assert!(e.ends_with("p.toml:8: field `fe_check.test` = '9': no test with this id in c38.csv"), "{e}");
+    }
 }
