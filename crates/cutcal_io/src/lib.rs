@@ -10,9 +10,11 @@
 mod fuzz;
 pub mod jc_file;
 pub mod material_file;
+mod material_raw;
 pub mod output;
 pub mod signal_csv;
 pub mod simulation_csv;
+mod test_columns;
 pub mod tests_csv;
 
 use std::fmt;
