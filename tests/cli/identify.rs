@@ -71,7 +71,7 @@ fn writes_zone_fields_and_a_loadable_jc_file() {
     // First row is EF (x = -h/2): gamma = 2 gamma_AB; effective strain 1.484 (paper Sec 3.2, issue 2).
     let ef: Vec<f64> = lines[1].split(',').map(|c| c.parse().unwrap()).collect();
     assert!((ef[0] + 0.05).abs() < 1e-9 && (ef[3] - 1.484).abs() < 5e-4);
-    let loaded = cutcal_cli::input::jc_file::load_jc(&jc).unwrap();
+    let loaded = cutcal_io::jc_file::load_jc(&jc).unwrap();
     assert!((loaded.a_pa / 1e6 - 671.0).abs() < 0.02 * 671.0);
 }
 

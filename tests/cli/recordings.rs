@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::fs;
 
-use cutcal_cli::input::tests_csv::load_tests;
+use cutcal_io::tests_csv::load_tests;
 use cutcal_signal::synthetic::SyntheticSpec;
 
 use super::cutcal;

@@ -92,7 +92,7 @@ fn diagnose(recordings: &Path, simulation: &Path) -> Result<serde_json::Value> {
         "--json".as_ref(),
     ];
     let cli = Cli::try_parse_from(argv).context("building the diagnose arguments")?;
-    let report = cutcal_cli::commands::diagnose::diagnose_files(&cli.args)?;
+    let report = cutcal_report::diagnose::diagnose_files(&cli.args.request())?;
     Ok(serde_json::to_value(&report)?)
 }
 
@@ -251,8 +251,8 @@ mod tests {
             for (i, hidden) in ["null", "edge_ploughing", "size_effect", "decoy:gain"].iter().enumerate() {
                 let d = dataset::generate(fam_b, i, hidden, 0, 11).unwrap();
                 // The CLI's readers accept both files.
-                let tests = cutcal_cli::input::tests_csv::parse_tests(p, &d.recordings).unwrap();
-                let sims = cutcal_cli::input::simulation_csv::parse_simulation(p, &d.simulation).unwrap();
+                let tests = cutcal_io::tests_csv::parse_tests(p, &d.recordings).unwrap();
+                let sims = cutcal_io::simulation_csv::parse_simulation(p, &d.simulation).unwrap();
                 assert_eq!(tests.len(), sims.len());
                 assert!((5..=30).contains(&tests.len()));
                 let [with, without, sim] = &d.clean;

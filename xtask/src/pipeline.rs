@@ -5,7 +5,7 @@ use std::fs;
 
 use anyhow::{bail, Context, Result};
 
-use cutcal_cli::output::StagedDir;
+use cutcal_io::output::StagedDir;
 
 use crate::flags::PipelineFlags;
 
@@ -26,9 +26,10 @@ pub fn run(flags: &PipelineFlags) -> Result<()> {
     let mut summary = Vec::new();
     let bar = cutcal_cli::progress::bar(projects.len() as u64, "pipeline projects", flags.quiet);
     for p in &projects {
-        let project = cutcal_cli::commands::run::load_project(p)?;
+        let project = cutcal_report::project::load_project(p)?;
         let out = staged.path(&project.name);
-        let report = cutcal_cli::commands::run::run_project(p, &out, flags.quiet)
+        let progress = cutcal_cli::progress::Terminal::new(flags.quiet);
+        let report = cutcal_report::stages::run_project(p, &out, &progress)
             .with_context(|| format!("project {}", p.display()))?;
         summary.push(report);
         bar.inc(1);
@@ -196,7 +197,7 @@ mod tests {
             serde_json::from_slice(&fs::read(a.join("c38_signals/report.json")).unwrap()).unwrap();
         let rec = s["recordings"].as_array().unwrap();
         assert_eq!(rec.iter().filter(|r| r["analysis"].is_object()).count(), 3);
-        let rows = cutcal_cli::input::tests_csv::load_tests(&a.join("c38_signals/measured_tests.csv")).unwrap();
+        let rows = cutcal_io::tests_csv::load_tests(&a.join("c38_signals/measured_tests.csv")).unwrap();
         let t3 = rows.iter().find(|t| t.id == "3").unwrap();
         for (got, want) in [(t3.measured.cutting_force_n_per_m, 224e3), (t3.measured.feed_force_n_per_m, 186e3)] {
             assert!((got.unwrap() / want - 1.0).abs() < 0.005, "{got:?} vs {want}");

@@ -118,7 +118,7 @@ pub fn run(dir: &Path) -> Result<()> {
     fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     for (test, seed) in FILES {
         let p = dir.join(format!("{test}.csv"));
-        cutcal_cli::output::write_atomic(&p, signal_text(test, seed).as_bytes())?;
+        cutcal_io::output::write_atomic(&p, signal_text(test, seed).as_bytes())?;
         println!("wrote {}", p.display());
     }
     Ok(())

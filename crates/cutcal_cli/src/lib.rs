@@ -1,14 +1,12 @@
-//! cutcal_cli: the edge of cutcal. Reads input files into model types, runs the library crates,
-//! writes outputs atomically. The `cutcal` binary is a thin wrapper over [`run`].
+//! cutcal_cli: the command-line face of cutcal. Parses arguments (clap), calls the libraries
+//! (`cutcal_report` for the work, `cutcal_io` for files) and prints; the `cutcal` binary is a thin
+//! wrapper over [`run`]. The Python module (`cutcal_py`) is the other face over the same calls.
 #![warn(missing_docs)]
 // The CLI prints its results: that is its job.
 #![allow(clippy::print_stdout)]
 
 pub mod commands;
-pub mod input;
-pub mod output;
 pub mod progress;
-pub mod report;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};

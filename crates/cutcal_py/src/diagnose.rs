@@ -1,11 +1,12 @@
-//! Diagnose face: discrepancy discovery (issue 6, `cutcal_diagnose`) on files, through the CLI
-//! library's `diagnose_files`, returning the JSON document of `cutcal diagnose --json`.
+//! Diagnose face: discrepancy discovery (issue 6, `cutcal_diagnose`) on files, through
+//! `cutcal_report::diagnose::diagnose_files` (what `cutcal diagnose` calls), returning the JSON
+//! document of `cutcal diagnose --json`.
 
 use std::path::PathBuf;
 
-use cutcal_cli::commands::diagnose::{diagnose_files, DiagnoseArgs, ForwardModel};
+use cutcal_report::diagnose::{diagnose_files, DiagnoseRequest as LibRequest, ForwardModel};
 
-use crate::errors::{classify, face, FaceResult};
+use crate::errors::{face, FaceResult};
 
 /// Inputs of a diagnosis (the CLI's flags).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -30,17 +31,15 @@ pub fn diagnose_json(req: &DiagnoseRequest) -> FaceResult<String> {
         "oxley" => ForwardModel::Oxley,
         other => return Err(face(anyhow::anyhow!("model must be \"oxley\", got {other:?}"))),
     };
-    let args = DiagnoseArgs {
+    let args = LibRequest {
         recordings: req.recordings.clone(),
         simulation: req.simulation.clone(),
         material: req.material.clone(),
         jc: req.jc.clone(),
         free_jc: req.free_jc,
         model,
-        json: true,
-        plot: None,
     };
-    let report = diagnose_files(&args).map_err(|e| classify(&e))?;
+    let report = diagnose_files(&args).map_err(face)?;
     serde_json::to_string_pretty(&report).map_err(face)
 }
 

@@ -1,7 +1,8 @@
 //! Error face: sorts an error chain of the library into the Python exception classes, keeping the
 //! CLI's message (`cutcal ...` prints `error: {e:#}`; Python raises the text after `error: `).
 
-use cutcal_cli::input::InputError;
+use cutcal_io::InputError;
+use cutcal_report::ErrorKind as ReportKind;
 
 /// Which Python exception class an error becomes (all derive from `cutcal.CutcalError`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -39,6 +40,17 @@ impl std::error::Error for FaceError {}
 
 /// The kind of one error in a chain, if it is one of the library's typed errors.
 fn kind_of(e: &(dyn std::error::Error + 'static)) -> Option<ErrorKind> {
+    if let Some(r) = e.downcast_ref::<cutcal_report::Error>() {
+        // The report library's error knows its typed cause under any context lines.
+        return match r.kind() {
+            ReportKind::Input => Some(ErrorKind::Input),
+            ReportKind::Model => Some(ErrorKind::Model),
+            ReportKind::Ident => Some(ErrorKind::Ident),
+            ReportKind::Export => Some(ErrorKind::Export),
+            ReportKind::Diagnose => Some(ErrorKind::Diagnose),
+            ReportKind::Other => None,
+        };
+    }
     if e.is::<InputError>() {
         Some(ErrorKind::Input)
     } else if e.is::<cutcal_ident::IdentError>() {
@@ -78,7 +90,7 @@ mod tests {
 
     #[test]
     fn a_reader_error_keeps_its_location_and_class() {
-        let e = cutcal_cli::input::tests_csv::parse_tests(Path::new("t.csv"), "test,speed_m_min\n1,2\n").unwrap_err();
+        let e = cutcal_io::tests_csv::parse_tests(Path::new("t.csv"), "test,speed_m_min\n1,2\n").unwrap_err();
         let f = face(e);
         assert_eq!(f.kind, ErrorKind::Input);
         assert!(f.message.starts_with("t.csv:1: field `uncut_mm`"), "{}", f.message);

@@ -1,16 +1,14 @@
 //! Export face: FE cards (Abaqus, LS-DYNA, DEFORM-style, MatML; fe-cards.md) rendered by
-//! `cutcal_export` with the options and provenance `cutcal export` uses, so a card rendered from
-//! Python is byte-identical to the CLI's; files are written with the CLI's atomic writer.
+//! `cutcal_report::export::render_request`, the function `cutcal export` calls, so a card rendered
+//! from Python is byte-identical to the CLI's; files are written by the same atomic writer.
 
 use std::path::{Path, PathBuf};
 
-use cutcal_cli::commands::export::{interface_of, load_tool, standard_options};
-use cutcal_cli::input::material_file::MaterialFile;
-use cutcal_cli::output::write_atomic;
-use cutcal_export::{render, render_all, Dialect, ExportFile, ExportInput, ExportOptions, Provenance};
-use cutcal_export::{TemperatureGrid, UnitSystem};
+use cutcal_export::ExportFile;
+use cutcal_io::material_file::MaterialFile;
+use cutcal_report::export::{render_request, write_files, ExportRequest as LibRequest, FormatChoice, UnitsChoice};
 
-use crate::errors::{classify, face, FaceResult};
+use crate::errors::{face, FaceResult};
 use crate::types::NamedJc;
 
 /// Options of an export; the defaults are the CLI's (`cutcal export --help`).
@@ -35,6 +33,12 @@ pub struct ExportRequest {
     pub source_test: Option<String>,
     /// Model variant named in the headers.
     pub model_variant: String,
+    /// Tool-chip contact temperature of the LS-DYNA FS = 2 friction table, degC (the CLI's
+    /// `--contact-temperature-c`; default: the homologous temperature 0.5 of the set, stated).
+    pub contact_temperature_c: Option<f64>,
+    /// Cutting speed, m/min, for the LS-DYNA termination time (the CLI's `--cutting-speed-m-min`;
+    /// default: none, no termination card).
+    pub cutting_speed_m_per_min: Option<f64>,
 }
 
 impl Default for ExportRequest {
@@ -49,89 +53,68 @@ impl Default for ExportRequest {
             heat_fraction: 0.9,
             source_test: None,
             model_variant: "as identified in the JC file".into(),
+            contact_temperature_c: None,
+            cutting_speed_m_per_min: None,
         }
     }
 }
 
-fn dialects(format: &str) -> FaceResult<Option<Dialect>> {
-    Ok(Some(match format {
-        "abaqus" => Dialect::Abaqus,
-        "lsdyna" => Dialect::LsDyna,
-        "deform" => Dialect::Deform,
-        "matml" => Dialect::MatMl,
-        "all" => return Ok(None),
+fn format_choice(format: &str) -> FaceResult<FormatChoice> {
+    Ok(match format {
+        "abaqus" => FormatChoice::Abaqus,
+        "lsdyna" => FormatChoice::Lsdyna,
+        "deform" => FormatChoice::Deform,
+        "matml" => FormatChoice::Matml,
+        "all" => FormatChoice::All,
         other => {
             return Err(face(anyhow::anyhow!(
                 "format must be one of abaqus, lsdyna, deform, matml, all; got {other:?}"
             )))
         }
-    }))
+    })
+}
+
+/// The library request (`cutcal export`'s) of a Python request.
+fn library_request(req: &ExportRequest) -> FaceResult<LibRequest> {
+    let units = match req.units.as_str() {
+        "tonne-mm-s" => UnitsChoice::TonneMmS,
+        "si" => UnitsChoice::Si,
+        other => return Err(face(anyhow::anyhow!("units must be \"tonne-mm-s\" or \"si\", got {other:?}"))),
+    };
+    Ok(LibRequest {
+        format: format_choice(&req.format)?,
+        units,
+        t_from_c: req.t_from_c,
+        t_to_c: req.t_to_c,
+        t_step_c: req.t_step_c,
+        strain_rate: req.strain_rate_per_s,
+        heat_fraction: req.heat_fraction,
+        source_test: req.source_test.clone(),
+        model_variant: req.model_variant.clone(),
+        contact_temperature_c: req.contact_temperature_c,
+        cutting_speed_m_min: req.cutting_speed_m_per_min,
+        tests: None,
+        test: None,
+    })
 }
 
 /// Renders the cards of `req.format` (several files for Abaqus and `all`), nothing written.
 pub fn render_cards(mf: &MaterialFile, jc: &NamedJc, req: &ExportRequest) -> FaceResult<Vec<ExportFile>> {
-    let dialect = dialects(&req.format)?;
-    let units = match req.units.as_str() {
-        "tonne-mm-s" => UnitSystem::TonneMmSecondKelvin,
-        "si" => UnitSystem::SiKelvin,
-        other => return Err(face(anyhow::anyhow!("units must be \"tonne-mm-s\" or \"si\", got {other:?}"))),
-    };
-    let iface = interface_of(mf).map_err(|e| classify(&e))?;
-    let tool = load_tool(mf).map_err(|e| classify(&e))?;
-    let wp = &mf.material;
-    let options = ExportOptions {
-        units,
-        temperatures: TemperatureGrid {
-            from_c: req.t_from_c.unwrap_or(wp.thermal.valid_from_c),
-            to_c: req.t_to_c.unwrap_or(wp.thermal.valid_to_c),
-            step_c: req.t_step_c,
-        },
-        tabular_strain_rate_per_s: req.strain_rate_per_s,
-        inelastic_heat_fraction: req.heat_fraction,
-        ..standard_options(wp)
-    };
+    let lib = library_request(req)?;
     // The CLI's default names the JC file; a set built or identified in Python has none.
     let default_source = match &jc.file_name {
         Some(name) => format!("JC file {name}"),
         None => "JC set given in Python".to_string(),
     };
-    let provenance = Provenance {
-        cutcal_version: env!("CARGO_PKG_VERSION").to_string(),
-        source_test: req.source_test.clone().unwrap_or(default_source),
-        model_variant: req.model_variant.clone(),
-    };
-    let input = ExportInput {
-        workpiece: wp,
-        jc: &jc.jc,
-        tool: tool.as_ref(),
-        interface: &iface.interface,
-        provenance: &provenance,
-        options: &options,
-    };
-    match dialect {
-        Some(d) => render(d, &input),
-        None => render_all(&input),
-    }
-    .map_err(|e| classify(&anyhow::Error::new(e).context(format!("rendering cards for {}", mf.path.display()))))
+    let what = || format!("rendering cards for {}", mf.path.display());
+    render_request(mf, &jc.jc, default_source, &lib, &what).map_err(face)
 }
 
 /// Renders and writes the cards into `out` (created if missing), each file atomically; if a write
 /// fails, the files of this call are removed. Returns the paths written.
 pub fn export_cards(mf: &MaterialFile, jc: &NamedJc, req: &ExportRequest, out: &Path) -> FaceResult<Vec<PathBuf>> {
     let files = render_cards(mf, jc, req)?;
-    std::fs::create_dir_all(out).map_err(|e| face(anyhow::anyhow!("cannot create {}: {e}", out.display())))?;
-    let mut written: Vec<PathBuf> = Vec::new();
-    for f in &files {
-        let path = out.join(&f.name);
-        if let Err(e) = write_atomic(&path, f.contents.as_bytes()) {
-            for p in &written {
-                let _ = std::fs::remove_file(p);
-            }
-            return Err(classify(&e));
-        }
-        written.push(path);
-    }
-    Ok(written)
+    write_files(out, &files).map_err(face)
 }
 
 #[cfg(test)]

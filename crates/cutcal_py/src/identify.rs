@@ -1,13 +1,15 @@
-//! Identify face: the DPZD identification of one test (paper Eq 15) through the CLI library's
-//! `identify_dpzd`, with the settings resolved by the CLI's own `settings_from_args`, so that a
-//! Python call and `cutcal identify --json` with the same options give the same numbers.
+//! Identify face: the DPZD identification of one test (paper Eq 15) through
+//! `cutcal_report::dpzd::identify_dpzd`, with the settings resolved by the same
+//! `DpzdRequest::settings` the CLI uses, so that a Python call and `cutcal identify --json` with
+//! the same options give the same numbers.
 
-use cutcal_cli::commands::bootstrap::{report_json, run_bootstrap, BootstrapArgs};
-use cutcal_cli::commands::identify::{identify_dpzd, settings_from_args, IdentifyArgs, Method, ModelChoice, Preset};
-use cutcal_cli::input::material_file::MaterialFile;
+use cutcal_io::material_file::MaterialFile;
 use cutcal_model::{CuttingTest, JcParams};
+use cutcal_report::bootstrap::{report_json, run_bootstrap, BootstrapRequest};
+use cutcal_report::dpzd::{identify_dpzd, ModelChoice, Preset};
+use cutcal_report::identify::DpzdRequest;
 
-use crate::errors::{face, FaceError, FaceResult};
+use crate::errors::{face, FaceResult};
 
 /// Options of one identification; the defaults are the CLI's (`cutcal identify --help`).
 #[derive(Debug, Clone, PartialEq)]
@@ -106,17 +108,9 @@ fn model_choice(name: &str) -> FaceResult<ModelChoice> {
     }
 }
 
-/// The CLI arguments this request stands for (paths are not used by the settings).
-fn cli_args(req: &IdentifyRequest) -> FaceResult<IdentifyArgs> {
-    Ok(IdentifyArgs {
-        material: Default::default(),
-        tests: Default::default(),
-        test: None,
-        method: Method::Dpzd,
-        no_chip: false,
-        sharp: false,
-        class: None,
-        fix: Vec::new(),
+/// The library requests this request stands for.
+fn requests(req: &IdentifyRequest) -> FaceResult<(DpzdRequest, BootstrapRequest)> {
+    let dpzd = DpzdRequest {
         model: model_choice(&req.model)?,
         preset: preset_choice(&req.preset)?,
         h_mm: req.h_mm,
@@ -127,30 +121,26 @@ fn cli_args(req: &IdentifyRequest) -> FaceResult<IdentifyArgs> {
         rho_cp_original: req.rho_cp_original,
         tolerance_c: req.tolerance_c,
         max_iterations: req.max_iterations,
-        json: true,
-        fields_csv: None,
-        out_jc: None,
-        uncertainty: BootstrapArgs {
-            bootstrap: req.bootstrap,
-            force_uncertainty: req.force_uncertainty,
-            chip_uncertainty: req.chip_uncertainty,
-            bootstrap_starts: req.bootstrap_starts,
-            noise_only: req.noise_only,
-            h_factor_range: vec![0.5, 2.0],
-            r_half_width: 1.0,
-        },
-    })
+    };
+    let boot = BootstrapRequest {
+        bootstrap: req.bootstrap,
+        force_uncertainty: req.force_uncertainty,
+        chip_uncertainty: req.chip_uncertainty,
+        bootstrap_starts: req.bootstrap_starts,
+        noise_only: req.noise_only,
+        ..BootstrapRequest::default()
+    };
+    Ok((dpzd, boot))
 }
 
 /// Identifies JC from `test` by the paper's Eq 15 (DPZD zone of Sec 3, enhanced fixed point of
 /// Sec 3.5), exactly as `cutcal identify --json` does.
 pub fn identify(mf: &MaterialFile, test: &CuttingTest, req: &IdentifyRequest) -> FaceResult<IdentifyOutput> {
-    let args = cli_args(req)?;
-    let settings = settings_from_args(&args, mf).map_err(|e| face_of(&e))?;
-    let out = identify_dpzd(mf, test, &settings).map_err(|e| face_of(&e))?;
-    let boot =
-        run_bootstrap(&args.uncertainty, mf, test, &out.settings_at_h_used(&settings)).map_err(|e| face_of(&e))?;
-    let json = report_json(&out.report, boot.as_ref()).map_err(|e| face_of(&e))?;
+    let (dpzd, boot) = requests(req)?;
+    let settings = dpzd.settings(mf).map_err(face)?;
+    let out = identify_dpzd(mf, test, &settings).map_err(face)?;
+    let boot = run_bootstrap(&boot, mf, test, &out.settings_at_h_used(&settings)).map_err(face)?;
+    let json = report_json(&out.report, boot.as_ref()).map_err(face)?;
     let spread_json = boot.as_ref().map(serde_json::to_string).transpose().map_err(face)?;
     let profile = out.zone.profile(req.field_points).map_err(face)?;
     let col = |f: fn(&cutcal_model::dpzd::ZonePoint) -> f64| profile.iter().map(f).collect::<Vec<f64>>();
@@ -165,11 +155,6 @@ pub fn identify(mf: &MaterialFile, test: &CuttingTest, req: &IdentifyRequest) ->
         (FIELD_NAMES[7], col(|p| p.temperature_c)),
     ];
     Ok(IdentifyOutput { jc: out.identification.jc, at_bounds: out.report.at_bounds.clone(), fields, json, spread_json })
-}
-
-/// Classifies an `anyhow` error of the CLI library.
-fn face_of(e: &anyhow::Error) -> FaceError {
-    crate::errors::classify(e)
 }
 
 #[cfg(test)]

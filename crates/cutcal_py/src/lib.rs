@@ -3,10 +3,11 @@
 //! One library, two thin faces: this crate adds no physics. Each module is an adapter for one
 //! face of the Python API that converts types and calls the library (`cutcal_model`,
 //! `cutcal_ident`, `cutcal_export`, `cutcal_diagnose`) through the same entry points the CLI uses
-//! (`cutcal_cli::{input, commands}`):
+//! (`cutcal_io` for files, `cutcal_report` for the work):
 //!
 //! - [`types`]: `Material`, `JcParams`, `CuttingTest`, `read_tests` (the CLI's readers);
 //! - [`identify`]: the DPZD identification of paper Eq 15 (Secs 3-4);
+//! - [`joint`]: the joint Oxley identification over every measured test, with its verdict;
 //! - [`predict`]: the extended Oxley model (Oxley 1989; Lalwani et al. 2009), per test and vectorised;
 //! - [`export`]: FE cards;
 //! - [`diagnose`]: discrepancy discovery;
@@ -20,6 +21,7 @@ pub mod diagnose;
 pub mod errors;
 pub mod export;
 pub mod identify;
+pub mod joint;
 pub mod predict;
 pub mod types;
 

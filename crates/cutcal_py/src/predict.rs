@@ -2,17 +2,18 @@
 //! tests (`cutcal predict --json`'s document) and, vectorised, for arrays of conditions.
 //!
 //! Both call `cutcal_model::oxley::predict`, the project's one forward model, with the options the
-//! CLI resolves (`cutcal_cli::commands::predict::oxley_options`). `predict_many` runs the
+//! CLI resolves (`cutcal_report::predict::oxley_options`). `predict_many` runs the
 //! conditions on rayon's pool; results are collected in index order, so they do not depend on the
 //! thread count.
 
-use cutcal_cli::commands::predict::{oxley_options, predict_rows, PredictReport};
-use cutcal_cli::input::material_file::MaterialFile;
+use cutcal_io::material_file::MaterialFile;
 use cutcal_model::oxley::{self, CuttingConditions, OxleyOptions, OxleyPrediction, Physics};
 use cutcal_model::{CuttingTest, JcParams};
+use cutcal_report::predict::{oxley_options, predict_rows, PredictReport};
+use cutcal_report::Context as _;
 use rayon::prelude::*;
 
-use crate::errors::{classify, FaceResult};
+use crate::errors::{face, FaceResult};
 
 /// Options of a prediction; the defaults are the CLI's (`cutcal predict --help`).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -32,7 +33,8 @@ pub struct PredictRequest {
 /// The Oxley options and work temperature of a request, resolved as the CLI does.
 pub fn resolve(mf: &MaterialFile, req: &PredictRequest) -> FaceResult<(OxleyOptions, f64)> {
     let options = oxley_options(mf.oxley.as_ref(), req.lalwani_ranges, req.eta, req.psi, None, None, None)
-        .map_err(|e| classify(&e.context(format!("Oxley options for {}", mf.path.display()))))?;
+        .with_context(|| format!("Oxley options for {}", mf.path.display()))
+        .map_err(face)?;
     Ok((options, req.work_temperature_c.unwrap_or(mf.material.room_c)))
 }
 

@@ -3,15 +3,15 @@
 //!
 //! A value given from Python (`JcParams(a_mpa=...)`, `CuttingTest(speed_m_min=...)`) is written as
 //! the one-record file the CLI would read (TOML for a JC set, one CSV row for a test) and parsed by
-//! `cutcal_cli::input`; the pseudo-file name (`<JcParams>`, `<CuttingTest>`) stands in for the path
+//! `cutcal_io`; the pseudo-file name (`<JcParams>`, `<CuttingTest>`) stands in for the path
 //! in a located error. No unit conversion or validation is written twice.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use cutcal_cli::input::jc_file::{load_jc, parse_jc, JcFile};
-use cutcal_cli::input::material_file::{load_material, parse_material, MaterialFile};
-use cutcal_cli::input::tests_csv::{load_tests, parse_tests};
+use cutcal_io::jc_file::{load_jc, parse_jc, JcFile};
+use cutcal_io::material_file::{load_material, parse_material, MaterialFile};
+use cutcal_io::tests_csv::{load_tests, parse_tests};
 use cutcal_model::{CuttingTest, JcParams};
 
 use crate::errors::{face, FaceResult};
@@ -30,6 +30,15 @@ pub fn material_from_file(path: &Path) -> FaceResult<MaterialFile> {
 /// a tool material named by `[interface].tool`).
 pub fn material_from_text(text: &str, source: &str) -> FaceResult<MaterialFile> {
     parse_material(Path::new(source), text).map_err(face)
+}
+
+/// A material from the values of a material file's keys (the keyword form of `Material(...)`),
+/// written as the TOML text the file would hold and read by the same reader, so that it is
+/// validated and converted exactly as [`material_from_file`] does; `source` names it in errors
+/// (the generated text's lines) and is the base of a tool named by `[interface].tool`.
+pub fn material_from_table(table: &toml::Table, source: &str) -> FaceResult<MaterialFile> {
+    let text = toml::to_string(table).map_err(face)?;
+    material_from_text(&text, source)
 }
 
 /// A JC set with the name of the file it came from (the CLI's `export` names that file in the
@@ -182,6 +191,23 @@ mod tests {
 
     fn fixture(rel: &str) -> PathBuf {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(rel)
+    }
+
+    #[test]
+    fn a_material_from_its_keys_equals_the_file() {
+        // The C38 file (paper Table 3 polynomials) read as a table of keys and rebuilt.
+        let path = fixture("fixtures/materials/c38.toml");
+        let table: toml::Table = std::fs::read_to_string(&path).unwrap().parse().unwrap();
+        let from_file = material_from_file(&path).unwrap();
+        let from_keys = material_from_table(&table, &path.display().to_string()).unwrap();
+        assert_eq!(format!("{:?}", from_keys.material), format!("{:?}", from_file.material));
+        assert_eq!(format!("{:?}", from_keys.bounds), format!("{:?}", from_file.bounds));
+        assert_eq!(format!("{:?}", from_keys.interface), format!("{:?}", from_file.interface));
+        let mut bad = table.clone();
+        bad.insert("melting_c".into(), toml::Value::Float(-5.0));
+        let e = material_from_table(&bad, "<Material>").unwrap_err();
+        assert_eq!(e.kind, ErrorKind::Input);
+        assert!(e.message.starts_with("<Material>:") && e.message.contains("melting_c"), "{}", e.message);
     }
 
     #[test]

@@ -1,49 +1,10 @@
 //! `cutcal export`: FE cards (Abaqus, LS-DYNA, DEFORM-style, MatML) from a material file and a JC
-//! file, rendered by `cutcal_export` and written atomically (issue 4; fe-cards.md).
-//!
-//! The tool material is read from `<tool>.toml` beside the workpiece file when the workpiece's
-//! `[interface]` names one. Everything is rendered before anything is written; each file is written
-//! to a temporary sibling and renamed, and if any write fails the files of this run are removed.
+//! file, rendered and written atomically by `cutcal_report::export` (issue 4; fe-cards.md).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{bail, Context, Result};
-use cutcal_export::{
-    render, render_all, render_cut2d, ContactTemperature, Dialect, ExportFile, ExportInput, ExportOptions, Provenance,
-    TemperatureGrid, UnitSystem, STANDARD_CONTACT_PRESSURES_MPA, STANDARD_FLOW_STRAIN_RATES_PER_S,
-    STANDARD_PLASTIC_STRAINS,
-};
-
-use crate::input::jc_file::load_jc;
-use crate::input::tests_csv::load_tests;
-use cutcal_model::{JcParams, Material};
-
-use crate::input::material_file::{load_material, InterfaceSection, MaterialFile};
-use crate::output::write_atomic;
-
-/// Which cards to write.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum FormatChoice {
-    /// Abaqus: native JC, tabular *PLASTIC variant, VFRIC source for Eq 17.
-    Abaqus,
-    /// LS-DYNA keyword deck.
-    Lsdyna,
-    /// DEFORM-style KEY block and readable sheet (unverified format).
-    Deform,
-    /// MatML 3.1 XML.
-    Matml,
-    /// Every dialect.
-    All,
-}
-
-/// Unit system of the Abaqus and LS-DYNA cards.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum UnitsChoice {
-    /// tonne, mm, s, N, MPa, mJ, K.
-    TonneMmS,
-    /// kg, m, s, N, Pa, J, K.
-    Si,
-}
+use anyhow::Result;
+use cutcal_report::export::{export_files, ExportRequest, FormatChoice, UnitsChoice};
 
 /// Arguments of `cutcal export`.
 #[derive(Debug, Clone, clap::Args)]
@@ -104,273 +65,32 @@ pub struct ExportArgs {
     pub test: Option<String>,
 }
 
-/// The interface section of a workpiece file, or a located error.
-pub fn interface_of(wp_file: &MaterialFile) -> Result<&InterfaceSection> {
-    wp_file.interface.as_ref().with_context(|| {
-        format!(
-            "{}: no [interface] section (friction and heat transfer are needed by the cards)",
-            wp_file.path.display()
-        )
-    })
-}
-
-/// The tool material named by `[interface].tool`, read from `<tool>.toml` beside the workpiece file.
-pub fn load_tool(wp_file: &MaterialFile) -> Result<Option<Material>> {
-    match wp_file.interface.as_ref().and_then(|i| i.tool.as_ref()) {
-        Some(name) => {
-            let dir = wp_file.path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-            let path = dir.join(format!("{name}.toml"));
-            Ok(Some(
-                load_material(&path)
-                    .with_context(|| format!("reading the tool material named by [interface].tool = {name:?}"))?
-                    .material,
-            ))
+impl ExportArgs {
+    /// The request these flags stand for.
+    #[must_use]
+    pub fn request(&self) -> ExportRequest {
+        ExportRequest {
+            format: self.format,
+            units: self.units,
+            t_from_c: self.t_from_c,
+            t_to_c: self.t_to_c,
+            t_step_c: self.t_step_c,
+            strain_rate: self.strain_rate,
+            heat_fraction: self.heat_fraction,
+            source_test: self.source_test.clone(),
+            model_variant: self.model_variant.clone(),
+            contact_temperature_c: self.contact_temperature_c,
+            cutting_speed_m_min: self.cutting_speed_m_min,
+            tests: self.tests.clone(),
+            test: self.test.clone(),
         }
-        None => Ok(None),
     }
-}
-
-/// The default export options of a workpiece: its thermal range every 100 K, the standard strain
-/// and pressure grids, 1e4 1/s for the tabular card, heat fraction 0.9, the default contact
-/// temperature (homologous 0.5, stated in the deck) and no cutting speed (no termination card).
-#[must_use]
-pub fn standard_options(wp: &Material) -> ExportOptions {
-    ExportOptions {
-        units: UnitSystem::TonneMmSecondKelvin,
-        temperatures: TemperatureGrid { from_c: wp.thermal.valid_from_c, to_c: wp.thermal.valid_to_c, step_c: 100.0 },
-        plastic_strains: STANDARD_PLASTIC_STRAINS.to_vec(),
-        tabular_strain_rate_per_s: 1e4,
-        flow_strain_rates_per_s: STANDARD_FLOW_STRAIN_RATES_PER_S.to_vec(),
-        contact_pressures_pa: STANDARD_CONTACT_PRESSURES_MPA.iter().map(|p| p * 1e6).collect(),
-        inelastic_heat_fraction: 0.9,
-        contact_temperature: None,
-        cutting_speed_m_per_s: None,
-    }
-}
-
-/// Every card of every dialect for a workpiece file and a JC set, with the standard options.
-pub fn render_cards(wp_file: &MaterialFile, jc: &JcParams, provenance: &Provenance) -> Result<Vec<ExportFile>> {
-    let iface = interface_of(wp_file)?;
-    let tool = load_tool(wp_file)?;
-    let options = standard_options(&wp_file.material);
-    let input = ExportInput {
-        workpiece: &wp_file.material,
-        jc,
-        tool: tool.as_ref(),
-        interface: &iface.interface,
-        provenance,
-        options: &options,
-    };
-    render_all(&input).with_context(|| format!("rendering cards for {}", wp_file.path.display()))
 }
 
 /// Runs `cutcal export`.
-///
-/// Returns an error if an input file cannot be read or validated, the interface or tool is
-/// missing, a card cannot be rendered, or a file cannot be written (then no file of this run is
-/// left behind).
 pub fn run(args: &ExportArgs) -> Result<()> {
-    let wp_file = load_material(&args.material)?;
-    let jc = load_jc(&args.jc)?;
-    let iface = interface_of(&wp_file)?;
-    let tool = load_tool(&wp_file)?;
-    let wp = &wp_file.material;
-    let options = ExportOptions {
-        units: match args.units {
-            UnitsChoice::TonneMmS => UnitSystem::TonneMmSecondKelvin,
-            UnitsChoice::Si => UnitSystem::SiKelvin,
-        },
-        temperatures: TemperatureGrid {
-            from_c: args.t_from_c.unwrap_or(wp.thermal.valid_from_c),
-            to_c: args.t_to_c.unwrap_or(wp.thermal.valid_to_c),
-            step_c: args.t_step_c,
-        },
-        ..standard_options(wp)
-    };
-    let options = ExportOptions {
-        tabular_strain_rate_per_s: args.strain_rate,
-        inelastic_heat_fraction: args.heat_fraction,
-        contact_temperature: args
-            .contact_temperature_c
-            .map(|t| ContactTemperature { temp_c: t, source: "given by --contact-temperature-c".into() }),
-        cutting_speed_m_per_s: args.cutting_speed_m_min.map(|v| v / 60.0),
-        ..options
-    };
-    let jc_name = args.jc.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let provenance = Provenance {
-        cutcal_version: env!("CARGO_PKG_VERSION").to_string(),
-        source_test: args.source_test.clone().unwrap_or_else(|| format!("JC file {jc_name}")),
-        model_variant: args.model_variant.clone(),
-    };
-    let input = ExportInput {
-        workpiece: wp,
-        jc: &jc,
-        tool: tool.as_ref(),
-        interface: &iface.interface,
-        provenance: &provenance,
-        options: &options,
-    };
-    let files = match args.format {
-        FormatChoice::Abaqus => render(Dialect::Abaqus, &input),
-        FormatChoice::Lsdyna => render(Dialect::LsDyna, &input),
-        FormatChoice::Deform => render(Dialect::Deform, &input),
-        FormatChoice::Matml => render(Dialect::MatMl, &input),
-        FormatChoice::All => render_all(&input),
-    }
-    .with_context(|| format!("rendering cards for {} with {}", args.material.display(), args.jc.display()))?;
-    let mut files = files;
-    files.extend(decks(args, &input)?);
-    if files.is_empty() {
-        bail!("no cards were rendered");
-    }
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
-    let mut written: Vec<PathBuf> = Vec::new();
-    for f in &files {
-        let path = args.out.join(&f.name);
-        if let Err(e) = write_atomic(&path, f.contents.as_bytes()) {
-            for p in &written {
-                let _ = std::fs::remove_file(p);
-            }
-            return Err(e);
-        }
-        written.push(path);
-    }
-    for p in &written {
+    for p in export_files(&args.material, &args.jc, &args.out, &args.request())? {
         println!("wrote {}", p.display());
     }
     Ok(())
-}
-
-/// The complete 2-D decks of `--tests` (all, or `--test`), or none without `--tests`.
-fn decks(args: &ExportArgs, input: &ExportInput<'_>) -> Result<Vec<ExportFile>> {
-    let Some(path) = &args.tests else { return Ok(Vec::new()) };
-    if !matches!(args.format, FormatChoice::Lsdyna | FormatChoice::All) {
-        bail!("--tests writes LS-DYNA decks: use it with --format lsdyna or all");
-    }
-    let tests = load_tests(path)?;
-    let chosen: Vec<_> = tests.iter().filter(|t| args.test.as_ref().is_none_or(|id| &t.id == id)).collect();
-    if chosen.is_empty() {
-        bail!("{}: no test {:?}", path.display(), args.test.as_deref().unwrap_or(""));
-    }
-    chosen
-        .into_iter()
-        .map(|t| {
-            render_cut2d(input, t)
-                .with_context(|| format!("rendering the 2-D deck of test {} of {}", t.id, path.display()))
-        })
-        .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn fixture(rel: &str) -> PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(rel)
-    }
-
-    fn args(material: &str, jc: &str, out: &Path) -> ExportArgs {
-        ExportArgs {
-            material: fixture(material),
-            jc: fixture(jc),
-            format: FormatChoice::All,
-            out: out.to_path_buf(),
-            units: UnitsChoice::TonneMmS,
-            t_from_c: None,
-            t_to_c: None,
-            t_step_c: 100.0,
-            strain_rate: 1e4,
-            heat_fraction: 0.9,
-            source_test: None,
-            model_variant: "enhanced DPZD".into(),
-            contact_temperature_c: None,
-            cutting_speed_m_min: None,
-            tests: None,
-            test: None,
-        }
-    }
-
-    #[test]
-    fn tests_option_writes_one_deck_per_chosen_test() {
-        let dir = tempfile::tempdir().unwrap();
-        let mut a = args("fixtures/materials/c38.toml", "fixtures/jc/c38_table5.toml", dir.path());
-        a.format = FormatChoice::Lsdyna;
-        a.tests = Some(fixture("fixtures/tests/c38.csv"));
-        a.test = Some("3".into());
-        run(&a).unwrap();
-        let deck = std::fs::read_to_string(dir.path().join("c38_cut2d_3.k")).unwrap();
-        // C38 test 3 (paper Table 2): 240 m/min, 0.075 mm; edge radius 25 um (fixtures/tests/c38.csv).
-        assert!(
-            deck.contains("V = 240. m/min, t1 = 0.075 mm") && deck.contains("edge radius = 25. um"),
-            "{}",
-            &deck[..2000]
-        );
-        assert!(dir.path().join("c38_lsdyna.k").exists());
-        assert!(!dir.path().join("c38_cut2d_1.k").exists());
-
-        a.test = Some("9".into());
-        let err = run(&a).unwrap_err();
-        assert!(format!("{err:#}").contains("no test \"9\""), "{err:#}");
-        a.test = None;
-        a.format = FormatChoice::Matml;
-        assert!(format!("{:#}", run(&a).unwrap_err()).contains("--format lsdyna or all"));
-    }
-
-    #[test]
-    fn export_all_writes_every_dialect_with_the_tool() {
-        let dir = tempfile::tempdir().unwrap();
-        run(&args("fixtures/materials/c38.toml", "fixtures/jc/c38_table5.toml", dir.path())).unwrap();
-        let mut names: Vec<String> = std::fs::read_dir(dir.path())
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        assert_eq!(
-            names,
-            [
-                "c38_abaqus_jc.inp",
-                "c38_abaqus_tabular.inp",
-                "c38_abaqus_vfriction.f",
-                "c38_deform.key",
-                "c38_deform_sheet.txt",
-                "c38_lsdyna.k",
-                "c38_matml.xml"
-            ]
-        );
-        let deck = std::fs::read_to_string(dir.path().join("c38_lsdyna.k")).unwrap();
-        // Table 5 (paper): A = 589 MPa on MAT_015 card 2; the H13A tool part comes from h13a.toml.
-        assert!(deck.contains("      589.      145.      0.25     0.069       1.1"));
-        assert!(deck.contains("H13A tool"));
-    }
-
-    #[test]
-    fn a_failed_render_writes_nothing() {
-        let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("cards");
-        let mut a = args("fixtures/materials/c38.toml", "fixtures/jc/c38_table5.toml", &out);
-        a.t_step_c = -5.0;
-        let err = run(&a).unwrap_err();
-        assert!(format!("{err:#}").contains("temperatures"), "{err:#}");
-        assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none());
-    }
-
-    #[test]
-    fn contact_temperature_and_speed_reach_the_lsdyna_deck() {
-        let dir = tempfile::tempdir().unwrap();
-        let mut a = args("fixtures/materials/c38.toml", "fixtures/jc/c38_table5.toml", dir.path());
-        a.format = FormatChoice::Lsdyna;
-        a.contact_temperature_c = Some(600.0);
-        a.cutting_speed_m_min = Some(180.0);
-        run(&a).unwrap();
-        let deck = std::fs::read_to_string(dir.path().join("c38_lsdyna.k")).unwrap();
-        // k(600 degC) of the C38 Table 5 set at eps = 2, epsdot = 1e4 1/s: 454.5733 MPa (python:
-        // (589+145*2**0.25)*(1+0.069*math.log(1e4))*(1-(580/1440)**1.1)/3**0.5); VC = m0 k, m0 = 1.
-        assert!(deck.contains("Tc = 600. degC") && deck.contains("   454.573 "), "{deck}");
-        // ENDTIM = 8 mm / (180 m/min) = 8e-3 / 3 s.
-        assert!(deck.contains("*CONTROL_TERMINATION") && deck.contains("ENDTIM = 0.002666667"), "{deck}");
-
-        a.contact_temperature_c = Some(1500.0);
-        let err = run(&a).unwrap_err();
-        assert!(format!("{err:#}").contains("contact_temperature_c"), "{err:#}");
-    }
 }

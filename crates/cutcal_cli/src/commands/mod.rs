@@ -1,11 +1,9 @@
-//! One module per `cutcal` subcommand: a clap `Args` struct and a `run` function.
+//! One module per `cutcal` subcommand: a clap `Args` struct and a `run` function that calls
+//! `cutcal_report` and prints.
 
-pub mod bootstrap;
 pub mod diagnose;
 pub mod export;
 pub mod identify;
-pub mod identify_oxley;
 pub mod predict;
 pub mod recordings;
 pub mod run;
-pub mod run_steps;

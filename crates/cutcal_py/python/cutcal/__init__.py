@@ -34,6 +34,7 @@ from ._cutcal import (
     diagnose,
     export,
     identify,
+    joint,
     predict as _predict,
     render,
 )
@@ -54,6 +55,7 @@ __all__ = [
     "diagnose",
     "export",
     "identify",
+    "joint",
     "predict",
     "predict_many",
     "read_tests",

@@ -19,7 +19,8 @@ class DiagnoseError(CutcalError): ...
 
 class Material:
     """A workpiece material: Table 3 polynomials (paper), bounds, interface (Eq 17 friction)."""
-    def __init__(self, toml_text: str, source: str = "<Material>") -> None: ...
+    def __init__(self, toml_text: Optional[str] = None, source: str = "<Material>", **keys: Any) -> None:
+        """TOML text of a material file, or the file's keys as keywords (same reader as from_toml)."""
     @staticmethod
     def from_toml(path: _Path) -> Material: ...
     @property
@@ -83,6 +84,11 @@ def identify(material: Material, test: CuttingTest, model: str = "enhanced", sta
              bootstrap: int = 0, force_uncertainty: Optional[float] = None, chip_uncertainty: Optional[float] = None,
              bootstrap_starts: int = 4, field_points: int = 201, noise_only: bool = False) -> IdentifyResult:
     """JC from one test: DPZD zone (paper Sec 3, Eqs 1-12; Sec 3.5 fixed point), Eq 15 fit."""
+def joint(material: Material, tests: List[CuttingTest], starts: int = 4, seed: int = 1,
+          use_chip_thickness: bool = True, sharp: bool = False, material_class: Optional[str] = None,
+          fix: Optional[Dict[str, float]] = None, work_temperature_c: Optional[float] = None) -> Dict[str, Any]:
+    """JC fitted jointly to every measured test through the extended Oxley model (Oxley 1989, Lalwani
+    et al. 2009); `jc` is a JcParams only when the verdict says the data determine the set."""
 def predict(material: Material, jc: JcParams, tests: List[CuttingTest], work_temperature_c: Optional[float] = None,
             lalwani_ranges: bool = False, eta: Optional[float] = None, psi: Optional[float] = None,
             sharp: bool = False) -> Dict[str, Any]: ...
@@ -94,10 +100,12 @@ def _predict_many(material: Material, jc: JcParams, speed_m_min: npt.NDArray[np.
 def render(material: Material, jc: JcParams, format: str, units: str = "tonne-mm-s",
            t_from_c: Optional[float] = None, t_to_c: Optional[float] = None, t_step_c: float = 100.0,
            strain_rate_per_s: float = 1e4, heat_fraction: float = 0.9, source_test: Optional[str] = None,
-           model_variant: str = "as identified in the JC file") -> Dict[str, str]: ...
+           model_variant: str = "as identified in the JC file", contact_temperature_c: Optional[float] = None,
+           cutting_speed_m_per_min: Optional[float] = None) -> Dict[str, str]: ...
 def export(material: Material, jc: JcParams, format: str = "all", out: _Path = ".", units: str = "tonne-mm-s",
            t_from_c: Optional[float] = None, t_to_c: Optional[float] = None, t_step_c: float = 100.0,
            strain_rate_per_s: float = 1e4, heat_fraction: float = 0.9, source_test: Optional[str] = None,
-           model_variant: str = "as identified in the JC file") -> List[str]: ...
+           model_variant: str = "as identified in the JC file", contact_temperature_c: Optional[float] = None,
+           cutting_speed_m_per_min: Optional[float] = None) -> List[str]: ...
 def diagnose(recordings: _Path, simulation: Optional[_Path] = None, material: Optional[_Path] = None,
              jc: Optional[_Path] = None, free_jc: bool = False, model: Optional[str] = None) -> Dict[str, Any]: ...

@@ -4,12 +4,13 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use cutcal_cli::input::jc_file::JcFile;
-use cutcal_cli::input::material_file::MaterialFile;
+use cutcal_io::jc_file::JcFile;
+use cutcal_io::material_file::MaterialFile;
 use cutcal_model::CuttingTest;
 use numpy::PyArray1;
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBool, PyDict, PyInt, PyList, PyTuple};
 
 use super::{json_to_py, to_py};
 use crate::identify::IdentifyOutput;
@@ -24,13 +25,29 @@ pub struct PyMaterial {
 
 #[pymethods]
 impl PyMaterial {
-    /// Material(toml_text, source="<Material>"): a material from TOML text in the format of
-    /// fixtures/materials/*.toml; `source` names it in errors and is the base of the
+    /// Material(toml_text=None, source="<Material>", **keys): a material from TOML text in the
+    /// format of fixtures/materials/*.toml, or from that format's keys as keywords
+    /// (`Material(name="C38", melting_c=1460.0, thermal={...}, yield_strength={...}, ...)`: the
+    /// values of the file's keys as Python dicts, lists, numbers and strings), read by the same
+    /// reader as `Material.from_toml`; `source` names it in errors and is the base of the
     /// `[interface].tool` file.
     #[new]
-    #[pyo3(signature = (toml_text, source = "<Material>"))]
-    fn new(toml_text: &str, source: &str) -> PyResult<Self> {
-        Ok(Self { inner: Arc::new(types::material_from_text(toml_text, source).map_err(to_py)?) })
+    #[pyo3(signature = (toml_text = None, source = "<Material>", **keys))]
+    fn new(toml_text: Option<&str>, source: &str, keys: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let keys = keys.filter(|k| !k.is_empty());
+        let mf = match (toml_text, keys) {
+            (Some(text), None) => types::material_from_text(text, source).map_err(to_py)?,
+            (None, Some(k)) => types::material_from_table(&toml_table(k, "")?, source).map_err(to_py)?,
+            (Some(_), Some(_)) => {
+                return Err(PyValueError::new_err("Material(...) takes TOML text or the file's keys, not both"))
+            }
+            (None, None) => {
+                return Err(PyValueError::new_err(
+                    "Material(...) needs TOML text or the material file's keys (name=..., melting_c=..., ...)",
+                ))
+            }
+        };
+        Ok(Self { inner: Arc::new(mf) })
     }
 
     /// Material.from_toml(path): reads a material file.
@@ -66,6 +83,45 @@ impl PyMaterial {
     fn __repr__(&self) -> String {
         format!("Material(name={:?}, path={:?})", self.inner.material.name, self.inner.path.display().to_string())
     }
+}
+
+/// A Python dict as a TOML table (`prefix` names nested keys in errors).
+fn toml_table(d: &Bound<'_, PyDict>, prefix: &str) -> PyResult<toml::Table> {
+    let mut t = toml::Table::new();
+    for (k, v) in d.iter() {
+        let key: String = k.extract().map_err(|_| PyValueError::new_err(format!("{prefix}keys must be strings")))?;
+        let value = toml_value(&v, &format!("{prefix}{key}"))?;
+        t.insert(key, value);
+    }
+    Ok(t)
+}
+
+/// A Python value as a TOML value: bool, int, float, str, list/tuple, dict (None has no TOML form:
+/// leave the key out).
+fn toml_value(v: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
+    if let Ok(d) = v.downcast::<PyDict>() {
+        return Ok(toml::Value::Table(toml_table(d, &format!("{key}."))?));
+    }
+    if v.is_instance_of::<PyBool>() {
+        return Ok(toml::Value::Boolean(v.extract()?));
+    }
+    if v.is_instance_of::<PyInt>() {
+        return Ok(toml::Value::Integer(v.extract()?));
+    }
+    if let Ok(x) = v.extract::<f64>() {
+        return Ok(toml::Value::Float(x));
+    }
+    if let Ok(s) = v.extract::<String>() {
+        return Ok(toml::Value::String(s));
+    }
+    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
+        let items: Vec<Bound<'_, PyAny>> = v.try_iter()?.collect::<PyResult<_>>()?;
+        return items.iter().map(|x| toml_value(x, key)).collect::<PyResult<Vec<_>>>().map(toml::Value::Array);
+    }
+    Err(PyValueError::new_err(format!(
+        "Material keyword `{key}`: {} has no TOML form (numbers, strings, lists, dicts; leave a key out instead of None)",
+        v.get_type().name()?
+    )))
 }
 
 /// A Johnson-Cook set (paper Eqs 14, 16) in the JC file's units: A, B in MPa, temperatures degC.

@@ -1,4 +1,4 @@
-//! Python functions: `read_tests`, `identify`, `predict`, `predict_many` (native part), `render`,
+//! Python functions: `read_tests`, `identify`, `joint`, `predict`, `predict_many` (native part), `render`,
 //! `export`, `diagnose`. Long work runs with the GIL released (`py.allow_threads`).
 
 use std::path::PathBuf;
@@ -14,8 +14,11 @@ use super::{json_to_py, to_py};
 use crate::diagnose::{diagnose_json, DiagnoseRequest};
 use crate::export::{export_cards, render_cards, ExportRequest};
 use crate::identify::{identify as identify_face, IdentifyRequest};
+use crate::joint::joint as joint_face;
 use crate::predict::{predict_many as many_face, predict_tests, resolve, Condition, PredictRequest, MANY_COLUMNS};
 use crate::types;
+use crate::types::NamedJc;
+use cutcal_report::joint::JointRequest;
 
 /// read_tests(path) -> list[CuttingTest]: the test CSV read by the CLI's reader.
 #[pyfunction]
@@ -167,6 +170,7 @@ fn _predict_many<'py>(
     Ok((out, PyArray1::from_vec(py, ok), PyList::new(py, errors)?, seconds))
 }
 
+#[allow(clippy::too_many_arguments)] // the CLI's options, one keyword each
 fn export_request(
     format: &str,
     units: &str,
@@ -177,6 +181,8 @@ fn export_request(
     heat_fraction: f64,
     source_test: Option<String>,
     model_variant: &str,
+    contact_temperature_c: Option<f64>,
+    cutting_speed_m_per_min: Option<f64>,
 ) -> ExportRequest {
     ExportRequest {
         format: format.into(),
@@ -188,6 +194,8 @@ fn export_request(
         heat_fraction,
         source_test,
         model_variant: model_variant.into(),
+        contact_temperature_c,
+        cutting_speed_m_per_min,
     }
 }
 
@@ -195,7 +203,8 @@ fn export_request(
 /// dialect (`abaqus` gives three files) or of `all`, exactly as `cutcal export` writes them.
 #[pyfunction]
 #[pyo3(signature = (material, jc, format, units = "tonne-mm-s", t_from_c = None, t_to_c = None, t_step_c = 100.0,
-    strain_rate_per_s = 1e4, heat_fraction = 0.9, source_test = None, model_variant = "as identified in the JC file"))]
+    strain_rate_per_s = 1e4, heat_fraction = 0.9, source_test = None, model_variant = "as identified in the JC file",
+    contact_temperature_c = None, cutting_speed_m_per_min = None))]
 #[allow(clippy::too_many_arguments)] // the CLI's options, one keyword each
 fn render<'py>(
     py: Python<'py>,
@@ -210,6 +219,8 @@ fn render<'py>(
     heat_fraction: f64,
     source_test: Option<String>,
     model_variant: &str,
+    contact_temperature_c: Option<f64>,
+    cutting_speed_m_per_min: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let req = export_request(
         format,
@@ -221,6 +232,8 @@ fn render<'py>(
         heat_fraction,
         source_test,
         model_variant,
+        contact_temperature_c,
+        cutting_speed_m_per_min,
     );
     let files = render_cards(&material.inner, &jc.inner, &req).map_err(to_py)?;
     let d = PyDict::new(py);
@@ -235,7 +248,7 @@ fn render<'py>(
 #[pyfunction]
 #[pyo3(signature = (material, jc, format = "all", out = PathBuf::from("."), units = "tonne-mm-s", t_from_c = None,
     t_to_c = None, t_step_c = 100.0, strain_rate_per_s = 1e4, heat_fraction = 0.9, source_test = None,
-    model_variant = "as identified in the JC file"))]
+    model_variant = "as identified in the JC file", contact_temperature_c = None, cutting_speed_m_per_min = None))]
 #[allow(clippy::too_many_arguments)] // the CLI's options, one keyword each
 fn export(
     material: &PyMaterial,
@@ -250,6 +263,8 @@ fn export(
     heat_fraction: f64,
     source_test: Option<String>,
     model_variant: &str,
+    contact_temperature_c: Option<f64>,
+    cutting_speed_m_per_min: Option<f64>,
 ) -> PyResult<Vec<String>> {
     let req = export_request(
         format,
@@ -261,6 +276,8 @@ fn export(
         heat_fraction,
         source_test,
         model_variant,
+        contact_temperature_c,
+        cutting_speed_m_per_min,
     );
     let written = export_cards(&material.inner, &jc.inner, &req, &out).map_err(to_py)?;
     Ok(written.iter().map(|p| p.display().to_string()).collect())
@@ -284,10 +301,60 @@ fn diagnose<'py>(
     json_to_py(py, &json)
 }
 
+/// joint(material, tests, starts=4, seed=1, use_chip_thickness=True, sharp=False,
+/// material_class=None, fix=None, work_temperature_c=None) -> dict: JC fitted jointly to every
+/// test with measured Fc and Ft through the extended Oxley model (Oxley 1989; Lalwani et al. 2009),
+/// as `cutcal identify --method oxley`. Keys: `verdict` (the CLI's line), `status`, `determined`,
+/// `effective_rank`, `free_parameters`, `condition_number`, `jc` (a JcParams only when the data
+/// determine the set, else None), `best_fit` (the fitted set whatever the verdict) and `report`
+/// (the CLI's `--json` document).
+#[pyfunction]
+#[pyo3(signature = (material, tests, starts = 4, seed = 1, use_chip_thickness = true, sharp = false,
+    material_class = None, fix = None, work_temperature_c = None))]
+#[allow(clippy::too_many_arguments)] // the CLI's options, one keyword each
+fn joint<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    tests: Vec<PyCuttingTest>,
+    starts: usize,
+    seed: u64,
+    use_chip_thickness: bool,
+    sharp: bool,
+    material_class: Option<String>,
+    fix: Option<std::collections::BTreeMap<String, f64>>,
+    work_temperature_c: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let req = JointRequest {
+        starts,
+        seed,
+        work_temperature_c,
+        use_chip_thickness,
+        tool_condition: !sharp,
+        class: material_class,
+        fix: fix.unwrap_or_default().into_iter().collect(),
+    };
+    let mf = material.inner.clone();
+    let tests: Vec<_> = tests.into_iter().map(|t| t.inner).collect();
+    let out = py.allow_threads(move || joint_face(&mf, &tests, &req)).map_err(to_py)?;
+    let jc = |j| PyJcParams { inner: NamedJc { jc: j, file_name: None } };
+    let d = PyDict::new(py);
+    d.set_item("verdict", out.verdict)?;
+    d.set_item("status", out.status)?;
+    d.set_item("determined", out.determined)?;
+    d.set_item("effective_rank", out.effective_rank)?;
+    d.set_item("free_parameters", out.free_parameters)?;
+    d.set_item("condition_number", out.condition_number)?;
+    d.set_item("jc", out.jc.map(jc))?;
+    d.set_item("best_fit", jc(out.best_fit))?;
+    d.set_item("report", json_to_py(py, &out.json)?)?;
+    Ok(d)
+}
+
 /// Adds the functions to the module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_tests, m)?)?;
     m.add_function(wrap_pyfunction!(identify, m)?)?;
+    m.add_function(wrap_pyfunction!(joint, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;
     m.add_function(wrap_pyfunction!(_predict_many, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;

@@ -174,6 +174,111 @@ def test_cards_rendered_from_python_are_byte_identical_to_the_cli(tmp_path):
     assert (tmp_path / "py" / "c38_matml.xml").read_bytes() == (out / "c38_matml.xml").read_bytes()
 
 
+def test_contact_temperature_and_cutting_speed_give_the_clis_lsdyna_deck(tmp_path):
+    out = tmp_path / "cli"
+    run_cli("export", "--material", C38, "--jc", C38_JC, "--format", "lsdyna", "--out", out,
+            "--contact-temperature-c", "600", "--cutting-speed-m-min", "180")
+    m, jc = cutcal.Material.from_toml(C38), cutcal.JcParams.from_toml(C38_JC)
+    deck = cutcal.render(m, jc, "lsdyna", contact_temperature_c=600.0, cutting_speed_m_per_min=180.0)
+    assert deck["c38_lsdyna.k"] == (out / "c38_lsdyna.k").read_text()
+    # The options reach the deck: Tc stated, and ENDTIM = 8 mm / (180 m/min) = 8e-3 / 3 s (paper Sec 5.1).
+    assert "Tc = 600. degC" in deck["c38_lsdyna.k"] and "ENDTIM = 0.002666667" in deck["c38_lsdyna.k"]
+    assert deck != cutcal.render(m, jc, "lsdyna")
+    written = cutcal.export(m, jc, format="lsdyna", out=tmp_path / "py", contact_temperature_c=600.0,
+                            cutting_speed_m_per_min=180.0)
+    assert [open(p).read() for p in written] == [(out / "c38_lsdyna.k").read_text()]
+    # Above the melting temperature the exporter refuses, as the CLI does.
+    with pytest.raises(cutcal.CutcalError, match="contact_temperature_c"):
+        cutcal.render(m, jc, "lsdyna", contact_temperature_c=1500.0)
+
+
+def test_joint_identification_equals_the_cli_and_withholds_an_undetermined_set():
+    args = ["identify", "--method", "oxley", "--material", AISI, "--tests", AISI_TESTS, "--starts", "2", "--json"]
+    cli = json.loads(run_cli(*args).stdout)
+    m = cutcal.Material.from_toml(AISI)
+    tests = cutcal.read_tests(AISI_TESTS, as_frame=False)
+    r = cutcal.joint(m, tests, starts=2)
+    assert_close(r["report"], cli, rel=1e-12)
+    # Four tests (Ivester et al. 2000) determine 2 of 5 directions: refused, no set returned.
+    assert r["status"] == cli["verdict"]["status"] == "undetermined"
+    assert not r["determined"] and r["jc"] is None
+    assert r["effective_rank"] == cli["identifiability"]["effective_rank"] < r["free_parameters"] == 5
+    assert math.isclose(r["condition_number"], cli["identifiability"]["condition_number"], rel_tol=1e-12)
+    assert r["verdict"].startswith("REFUSED, not determined")
+    assert math.isclose(r["best_fit"].a_mpa, cli["jc"]["a_pa"] / 1e6, rel_tol=1e-12)
+
+
+def test_joint_with_fixed_parameters_equals_the_cli():
+    # n, C and m fixed at the Jaspers & Dautzenberg 2002 set (fixtures/jc/aisi1045_jaspers2002.toml).
+    fix = {"n": 0.234, "c": 0.0134, "m": 1.0}
+    args = ["identify", "--method", "oxley", "--material", AISI, "--tests", AISI_TESTS, "--starts", "2", "--json"]
+    for k, v in fix.items():
+        args += ["--fix", f"{k}={v}"]
+    cli = json.loads(run_cli(*args).stdout)
+    r = cutcal.joint(cutcal.Material.from_toml(AISI), cutcal.read_tests(AISI_TESTS, as_frame=False), starts=2,
+                     fix=fix)
+    assert_close(r["report"], cli, rel=1e-12)
+    assert r["determined"] == (cli["verdict"]["status"] == "determined")
+    assert (r["jc"] is not None) == r["determined"]
+    if r["determined"]:
+        assert math.isclose(r["jc"].b_mpa, cli["jc"]["b_pa"] / 1e6, rel_tol=1e-12)
+    with pytest.raises(cutcal.CutcalError, match="--fix q=1"):
+        cutcal.joint(cutcal.Material.from_toml(AISI), [], fix={"q": 1.0})
+
+
+def test_joint_returns_the_set_when_determined_and_equals_the_cli(tmp_path):
+    # Six conditions around Ivester et al. 2000's (200 m/min, 0.15 mm, -7 deg, 1.6 mm) whose Fc, Ft
+    # and tc are cutcal's own predictions with the Jaspers & Dautzenberg 2002 set: with n, C and m
+    # fixed at that set, the data determine A and B, and the fit must give the set back.
+    m = cutcal.Material.from_toml(AISI)
+    jc = cutcal.JcParams.from_toml(AISI_JC)
+    speed = np.array([150.0, 200.0, 250.0, 300.0, 200.0, 200.0])
+    uncut = np.array([0.15, 0.15, 0.15, 0.15, 0.10, 0.30])
+    p = cutcal.predict_many(m, jc, speed, uncut, 1.6, -7.0)
+    assert p["converged"].all()
+    rows = ["test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm,ft_n_per_mm,chip_mm"]
+    for i in range(len(speed)):
+        rows.append(f"{i + 1},{float(speed[i])!r},{float(uncut[i])!r},1.6,-7,{float(p['fc_n_per_mm'][i])!r},"
+                    f"{float(p['ft_n_per_mm'][i])!r},{float(p['tc_mm'][i])!r}")
+    csv = tmp_path / "model_tests.csv"
+    csv.write_text("\n".join(rows) + "\n")
+    fix = {"n": jc.n, "c": jc.c, "m": jc.m}
+    args = ["identify", "--method", "oxley", "--material", AISI, "--tests", csv, "--starts", "2", "--json"]
+    for k, v in fix.items():
+        args += ["--fix", f"{k}={v!r}"]
+    cli = json.loads(run_cli(*args).stdout)
+    r = cutcal.joint(m, cutcal.read_tests(csv, as_frame=False), starts=2, fix=fix)
+    assert_close(r["report"], cli, rel=1e-12)
+    assert r["status"] == "determined" and r["determined"] and r["effective_rank"] == r["free_parameters"] == 2
+    assert math.isclose(r["jc"].a_mpa, cli["jc"]["a_pa"] / 1e6, rel_tol=1e-12)
+    assert math.isclose(r["jc"].a_mpa, jc.a_mpa, rel_tol=1e-6) and math.isclose(r["jc"].b_mpa, jc.b_mpa, rel_tol=1e-6)
+
+
+def test_material_from_keywords_equals_from_toml():
+    import tomllib
+
+    with open(C38, "rb") as f:
+        keys = tomllib.load(f)
+    # The file's keys as keywords; the source is the file's path so the tool file (h13a.toml) is found.
+    m = cutcal.Material(source=C38, **keys)
+    ref = cutcal.Material.from_toml(C38)
+    assert (m.name, m.melting_c, m.room_c) == (ref.name, ref.melting_c, ref.room_c)
+    jc = cutcal.JcParams.from_toml(C38_JC)
+    tests = cutcal.read_tests(C38_TESTS, as_frame=False)
+    assert_close(cutcal.predict(m, jc, tests), cutcal.predict(ref, jc, tests), rel=0.0)
+    assert cutcal.render(m, jc, "all") == cutcal.render(ref, jc, "all")
+    t3 = pick(tests, "3")
+    assert_close(cutcal.identify(m, t3, preset="paper", starts=4).to_dict(),
+                 cutcal.identify(ref, t3, preset="paper", starts=4).to_dict(), rel=0.0)
+    # A bad value is rejected by the file reader, naming the field.
+    with pytest.raises(cutcal.InputError, match="melting_c"):
+        cutcal.Material(**{**keys, "melting_c": -5.0})
+    with pytest.raises(ValueError, match="not both"):
+        cutcal.Material("name = 'x'", **keys)
+    with pytest.raises(ValueError, match="no TOML form"):
+        cutcal.Material(**{**keys, "name": None})
+
+
 @pytest.mark.parametrize("material,tests", [
     ("fixtures/bad/material_nan_melting.toml", C38_TESTS),
     ("fixtures/bad/material_syntax_error.toml", C38_TESTS),

@@ -23,9 +23,9 @@ fn config(smoke: u32) -> ProptestConfig {
     ProptestConfig { cases: cases(smoke), max_shrink_iters: 2000, ..ProptestConfig::default() }
 }
 
-const CSV_FIXTURE: &str = include_str!("../../../../fixtures/tests/c38.csv");
-const MATERIAL_FIXTURE: &str = include_str!("../../../../fixtures/materials/c38.toml");
-const JC_FIXTURE: &str = include_str!("../../../../fixtures/jc/c38_table5.toml");
+const CSV_FIXTURE: &str = include_str!("../../../fixtures/tests/c38.csv");
+const MATERIAL_FIXTURE: &str = include_str!("../../../fixtures/materials/c38.toml");
+const JC_FIXTURE: &str = include_str!("../../../fixtures/jc/c38_table5.toml");
 
 /// Cells and tokens that have broken parsers before, or could.
 const ADVERSARIAL: &[&str] = &[

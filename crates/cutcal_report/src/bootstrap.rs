@@ -1,4 +1,4 @@
-//! `cutcal identify --bootstrap N`: uncertainty of the identified JC parameters from the stated
+//! The bootstrap of a DPZD identification (`cutcal identify --bootstrap N`): uncertainty of the identified JC parameters from the stated
 //! uncertainty of the measured Fc, Ft and tc (library: [`cutcal_ident::bootstrap`]).
 //!
 //! The uncertainty of each quantity is, in this order: the command-line value; the test row's own
@@ -15,7 +15,6 @@
 
 use std::fmt::Write as _;
 
-use anyhow::{Context, Result};
 use cutcal_ident::bootstrap::{
     bootstrap, BootstrapOptions, BootstrapReport, Measurement, RelativeUncertainty, Sample, UnstatedChoices,
 };
@@ -24,38 +23,45 @@ use cutcal_model::dpzd::{self, ShearPlaneState};
 use cutcal_model::CuttingTest;
 use serde::Serialize;
 
-use super::identify::{jc_bounds, DpzdIdentifyReport, DpzdSettings};
-use crate::input::material_file::MaterialFile;
+use cutcal_io::material_file::MaterialFile;
 
-/// Bootstrap options of `cutcal identify`.
-#[derive(Debug, Clone, clap::Args)]
-pub struct BootstrapArgs {
-    /// Resample the measured Fc, Ft and tc this many times and report the JC parameter spread (0: off).
-    #[arg(long, default_value_t = 0)]
+use crate::dpzd::{jc_bounds, DpzdIdentifyReport, DpzdSettings, Preset};
+use crate::error::{Context, Result};
+
+/// Bootstrap options of an identification (the CLI's `--bootstrap*` flags, Python's keywords).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BootstrapRequest {
+    /// Resample the measured Fc, Ft and tc this many times (0: off).
     pub bootstrap: usize,
-    /// Relative standard uncertainty of the measured forces (0.03 = 3 %); default: the row's
-    /// `fc_sd_n_per_mm` / `ft_sd_n_per_mm` when present, else 3 %.
-    #[arg(long)]
+    /// Relative standard uncertainty of the measured forces (`None`: the row's sd, else 3 %).
     pub force_uncertainty: Option<f64>,
-    /// Relative standard uncertainty of the measured chip thickness (0.05 = 5 %); default: the
-    /// row's `chip_sd_mm` when present, else 5 %.
-    #[arg(long)]
+    /// Relative standard uncertainty of the measured chip thickness (`None`: the row's sd, else 5 %).
     pub chip_uncertainty: Option<f64>,
     /// Multistart starts per bootstrap sample.
-    #[arg(long, default_value_t = 4)]
     pub bootstrap_starts: usize,
     /// Vary only the measurements, not the unstated choices h and r.
-    #[arg(long)]
     pub noise_only: bool,
     /// Range of the factor on h varied with the measurements (log-uniform): LOW HIGH.
-    #[arg(long, num_args = 2, value_names = ["LOW", "HIGH"], default_values_t = [0.5, 2.0])]
     pub h_factor_range: Vec<f64>,
-    /// Half-width of the uniform range of r varied with the measurements (nominal r +- this).
-    #[arg(long, default_value_t = 1.0)]
+    /// Half-width of the uniform range of r varied with the measurements.
     pub r_half_width: f64,
 }
 
-impl BootstrapArgs {
+impl Default for BootstrapRequest {
+    fn default() -> Self {
+        Self {
+            bootstrap: 0,
+            force_uncertainty: None,
+            chip_uncertainty: None,
+            bootstrap_starts: 4,
+            noise_only: false,
+            h_factor_range: vec![0.5, 2.0],
+            r_half_width: 1.0,
+        }
+    }
+}
+
+impl BootstrapRequest {
     /// The unstated choices to vary (`None` with `--noise-only`).
     pub fn choices(&self) -> Result<Option<UnstatedChoices>> {
         if self.noise_only {
@@ -63,7 +69,7 @@ impl BootstrapArgs {
         }
         let [lo, hi] = match self.h_factor_range.as_slice() {
             [lo, hi] => [*lo, *hi],
-            other => anyhow::bail!("--h-factor-range takes LOW HIGH, got {other:?}"),
+            other => crate::bail!("--h-factor-range takes LOW HIGH, got {other:?}"),
         };
         Ok(Some(UnstatedChoices::new([lo, hi], self.r_half_width).context("--h-factor-range / --r-half-width")?))
     }
@@ -76,7 +82,7 @@ impl BootstrapArgs {
 /// Returns an error if the options are out of range, the test lacks a measurement, or fewer than
 /// two samples can be identified.
 pub fn run_bootstrap(
-    args: &BootstrapArgs,
+    args: &BootstrapRequest,
     mf: &MaterialFile,
     test: &CuttingTest,
     settings: &DpzdSettings,
@@ -87,7 +93,7 @@ pub fn run_bootstrap(
     let (force, chip, source) = uncertainty_of(args, test);
     let uncertainty = RelativeUncertainty::new(force, chip).context("--force-uncertainty / --chip-uncertainty")?;
     if !(1..=1000).contains(&args.bootstrap_starts) {
-        anyhow::bail!("--bootstrap-starts must be in 1..=1000, got {}", args.bootstrap_starts);
+        crate::bail!("--bootstrap-starts must be in 1..=1000, got {}", args.bootstrap_starts);
     }
     let missing = |what: &str| format!("test {}: --bootstrap needs the measured {what}", test.id);
     let nominal = Measurement {
@@ -103,7 +109,7 @@ pub fn run_bootstrap(
         let m = &s.measurement;
         let config = DpzdSettings { h_m: settings.h_m * s.h_factor, r: settings.r + s.r_offset, ..settings.clone() }
             .config()
-            .map_err(|e| IdentError::InvalidOptions(format!("{e:#}")))?;
+            .map_err(|e| IdentError::InvalidOptions(e.chain_text()))?;
         let t = test
             .clone()
             .with_forces(Some(m.cutting_force_n_per_m), Some(m.feed_force_n_per_m))?
@@ -112,7 +118,7 @@ pub fn run_bootstrap(
         let zone = dpzd::solve(&mf.material, &state, &config)?;
         // The same objective and law as the nominal identification (issue 11 presets).
         match settings.preset {
-            super::identify::Preset::Paper => Ok(identify_from_zone_with(
+            Preset::Paper => Ok(identify_from_zone_with(
                 &zone,
                 settings.points,
                 cutcal_model::RateTerm::Unclamped,
@@ -121,7 +127,7 @@ pub fn run_bootstrap(
                 &multistart,
             )?
             .jc),
-            super::identify::Preset::Converged => Ok(cutcal_ident::identify_converged(
+            Preset::Converged => Ok(cutcal_ident::identify_converged(
                 &zone,
                 &bounds,
                 constants,
@@ -149,7 +155,7 @@ pub struct BootstrapOutcome {
 }
 
 /// The force and chip uncertainties: the flag, else the row's sd columns, else 3 % / 5 %.
-fn uncertainty_of(args: &BootstrapArgs, test: &CuttingTest) -> (f64, f64, String) {
+fn uncertainty_of(args: &BootstrapRequest, test: &CuttingTest) -> (f64, f64, String) {
     let m = test.measured;
     let rel = |sd: Option<f64>, v: Option<f64>| match (sd, v) {
         (Some(s), Some(v)) if v > 0.0 && s.is_finite() => Some(s / v),

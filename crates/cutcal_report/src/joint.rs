@@ -1,4 +1,4 @@
-//! `cutcal identify --method oxley`: Johnson-Cook parameters fitted jointly to the measured forces
+//! The joint identification (`cutcal identify --method oxley`, a project's `[joint]`): Johnson-Cook parameters fitted jointly to the measured forces
 //! (and chip thickness) of several tests through the extended Oxley model.
 //!
 //! Measurement columns of the tests CSV: `fc_n`, `ft_n` are totals in N over `width_mm`, or
@@ -11,55 +11,19 @@
 //! (`cutcal_ident::identifiability`).
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::Path;
 
-use anyhow::{Context, Result};
 use cutcal_ident::joint::{identify_oxley, JointOptions, JointVerdict, OxleyIdentification, Quantity};
 use cutcal_ident::literature::MaterialClass;
 use cutcal_ident::{JcConstants, MultistartOptions};
-use cutcal_model::oxley::Physics;
+use cutcal_io::material_file::{load_material, MaterialFile};
+use cutcal_io::tests_csv::{load_tests_measuring, MeasuredColumn};
+use cutcal_model::oxley::{OxleyOptions, Physics};
+use cutcal_model::CuttingTest;
 
-use crate::commands::identify::jc_bounds;
-use crate::commands::predict::oxley_options;
-use crate::input::material_file::load_material;
-use crate::input::tests_csv::{load_tests_measuring, MeasuredColumn};
-
-/// Arguments of `cutcal identify --method oxley` (the dispatcher passes them through).
-#[derive(Debug, Clone, clap::Args)]
-pub struct IdentifyOxleyArgs {
-    /// Material file (TOML) with thermal data and `[bounds]`.
-    #[arg(long)]
-    pub material: PathBuf,
-    /// Tests (CSV) with measured forces.
-    #[arg(long)]
-    pub tests: PathBuf,
-    /// Multistart starts.
-    #[arg(long, default_value_t = 8)]
-    pub starts: usize,
-    /// Multistart seed.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// Print one JSON object instead of a table.
-    #[arg(long)]
-    pub json: bool,
-    /// Work-material temperature, degC (default: the material's room temperature).
-    #[arg(long)]
-    pub work_temperature_c: Option<f64>,
-    /// Do not fit the measured chip thickness.
-    #[arg(long)]
-    pub no_chip: bool,
-    /// Ignore the tests' edge radius and flank wear in the forward model (sharp, unworn tool).
-    #[arg(long)]
-    pub sharp: bool,
-    /// Material class for the literature box of n, C and m: steel, titanium, aluminium, or none
-    /// (the material's own bounds only). Default: from the room-temperature density.
-    #[arg(long)]
-    pub class: Option<String>,
-    /// Fix a parameter at a value, NAME=VALUE with NAME one of a_mpa, b_mpa, n, c, m (repeatable),
-    /// for example the n, C and m of a published set when the data cannot determine all five.
-    #[arg(long = "fix", value_name = "NAME=VALUE")]
-    pub fix: Vec<String>,
-}
+use crate::dpzd::jc_bounds;
+use crate::error::{Context, Error, Result};
+use crate::predict::oxley_options;
 
 /// Applies `--fix NAME=VALUE` arguments to `bounds`.
 pub fn apply_fixes(bounds: &mut cutcal_ident::JcBounds, fixes: &[(String, f64)]) -> Result<()> {
@@ -69,9 +33,10 @@ pub fn apply_fixes(bounds: &mut cutcal_ident::JcBounds, fixes: &[(String, f64)])
     Ok(())
 }
 
-fn parse_fix(s: &str) -> Result<(String, f64)> {
-    let (name, value) = s.split_once('=').ok_or_else(|| anyhow::anyhow!("--fix {s:?}: expected NAME=VALUE"))?;
-    let v: f64 = value.trim().parse().map_err(|_| anyhow::anyhow!("--fix {s:?}: {value:?} is not a number"))?;
+/// Parses one `--fix NAME=VALUE` argument.
+pub fn parse_fix(s: &str) -> Result<(String, f64)> {
+    let (name, value) = s.split_once('=').ok_or_else(|| Error::invalid(format!("--fix {s:?}: expected NAME=VALUE")))?;
+    let v: f64 = value.trim().parse().map_err(|_| Error::invalid(format!("--fix {s:?}: {value:?} is not a number")))?;
     Ok((name.trim().to_string(), v))
 }
 
@@ -82,7 +47,7 @@ pub fn material_class(arg: Option<&str>, material: &cutcal_model::Material) -> R
         Some(s) if s.trim().eq_ignore_ascii_case("none") => Ok(None),
         Some(s) => MaterialClass::parse(s)
             .map(Some)
-            .ok_or_else(|| anyhow::anyhow!("--class {s:?}: expected steel, titanium, aluminium or none")),
+            .ok_or_else(|| Error::invalid(format!("--class {s:?}: expected steel, titanium, aluminium or none"))),
         None => Ok(MaterialClass::from_density(material.thermal.density.value(material.room_c))),
     }
 }
@@ -185,41 +150,100 @@ pub fn verdict_line(v: &JointVerdict) -> String {
     }
 }
 
-/// Runs the joint identification.
-pub fn run(args: &IdentifyOxleyArgs) -> Result<()> {
-    let mf = load_material(&args.material)?;
-    let tests = load_tests_measuring(
-        &args.tests,
-        &[MeasuredColumn::CuttingForce, MeasuredColumn::FeedForce],
-        "the joint Oxley identification needs measured Fc and Ft (tc where measured)",
-    )?;
-    let mut bounds = jc_bounds(&mf)?;
-    let fixes = args.fix.iter().map(|f| parse_fix(f)).collect::<Result<Vec<_>>>()?;
-    apply_fixes(&mut bounds, &fixes)?;
-    let oxley = oxley_options(mf.oxley.as_ref(), false, None, None, None, None, None)
-        .with_context(|| format!("Oxley options for {}", args.material.display()))?;
+/// Options of a joint identification (the CLI's `identify --method oxley` flags, a project's
+/// `[joint]` table, Python's keywords).
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointRequest {
+    /// Multistart starts (each ~1 s).
+    pub starts: usize,
+    /// Multistart seed.
+    pub seed: u64,
+    /// Work-material temperature, degC (`None`: the material's room temperature).
+    pub work_temperature_c: Option<f64>,
+    /// Fit the measured chip thickness where measured.
+    pub use_chip_thickness: bool,
+    /// Include the tests' edge radius and flank wear in the forward model.
+    pub tool_condition: bool,
+    /// Material class of the literature box (`steel`, `titanium`, `aluminium`, `none`; `None`:
+    /// from the density).
+    pub class: Option<String>,
+    /// Parameters fixed at a value (a_mpa, b_mpa, n, c, m).
+    pub fix: Vec<(String, f64)>,
+}
+
+impl Default for JointRequest {
+    fn default() -> Self {
+        Self {
+            starts: 4,
+            seed: 1,
+            work_temperature_c: None,
+            use_chip_thickness: true,
+            tool_condition: true,
+            class: None,
+            fix: Vec::new(),
+        }
+    }
+}
+
+/// The joint identification of every measured test of `tests` (read from `tests_path`, named in
+/// the error context) with the Oxley options `oxley`. `project` names the project in the context
+/// of a bad `fix` or `class` (the project runner's `[joint]` table); `None` for the CLI's flags.
+///
+/// Returns an error if the material has no bounds, a fix or the class is refused, or the fit fails.
+pub fn joint_fit(
+    mf: &MaterialFile,
+    tests: &[CuttingTest],
+    tests_path: &Path,
+    oxley: OxleyOptions,
+    req: &JointRequest,
+    project: Option<&str>,
+) -> Result<OxleyIdentification> {
+    let mut bounds = jc_bounds(mf)?;
+    let fixed = apply_fixes(&mut bounds, &req.fix);
+    let class = material_class(req.class.as_deref(), &mf.material);
+    let (fixed, class) = match project {
+        Some(p) => (
+            fixed.with_context(|| format!("[joint] fix of project {p}")),
+            class.with_context(|| format!("[joint] class of {p}")),
+        ),
+        None => (fixed, class),
+    };
+    fixed?;
+    let class = class?;
     let options = JointOptions {
         oxley,
         physics: Physics::baseline(),
-        work_temperature_c: args.work_temperature_c.unwrap_or(mf.material.room_c),
-        use_chip_thickness: !args.no_chip,
-        tool_condition: !args.sharp,
+        work_temperature_c: req.work_temperature_c.unwrap_or(mf.material.room_c),
+        use_chip_thickness: req.use_chip_thickness,
+        tool_condition: req.tool_condition,
     };
     let constants = JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };
-    let id = identify_oxley(
+    identify_oxley(
         &mf.material,
-        &tests,
+        tests,
         &bounds,
-        material_class(args.class.as_deref(), &mf.material)?,
+        class,
         constants,
         &options,
-        &MultistartOptions::new(args.starts, args.seed),
+        &MultistartOptions::new(req.starts, req.seed),
     )
-    .with_context(|| format!("joint Oxley identification from {}", args.tests.display()))?;
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&id)?);
-    } else {
-        print!("{}", table(&mf.material.name, &id));
-    }
-    Ok(())
+    .with_context(|| format!("joint Oxley identification from {}", tests_path.display()))
+}
+
+/// Reads the material and the tests (Fc and Ft measured; tc where measured) and runs the joint
+/// identification: what `cutcal identify --method oxley` computes before it prints.
+pub fn joint_files(material: &Path, tests: &Path, req: &JointRequest) -> Result<(MaterialFile, OxleyIdentification)> {
+    let mf = load_material(material)?;
+    let all = load_tests_measuring(
+        tests,
+        &[MeasuredColumn::CuttingForce, MeasuredColumn::FeedForce],
+        "the joint Oxley identification needs measured Fc and Ft (tc where measured)",
+    )?;
+    // The flags are checked before the options, as the command always did.
+    let mut bounds = jc_bounds(&mf)?;
+    apply_fixes(&mut bounds, &req.fix)?;
+    let oxley = oxley_options(mf.oxley.as_ref(), false, None, None, None, None, None)
+        .with_context(|| format!("Oxley options for {}", material.display()))?;
+    let id = joint_fit(&mf, &all, tests, oxley, req, None)?;
+    Ok((mf, id))
 }

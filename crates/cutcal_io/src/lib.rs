@@ -1,13 +1,20 @@
-//! Reading cutcal's input files (material and JC TOML, test CSV) into validated model types.
+//! cutcal_io: cutcal's file edge as a library. Reading the input files (material and JC TOML, test
+//! CSV, simulation CSV, raw signal CSV) into validated model types, and writing outputs atomically
+//! ([`output`]). The CLI and the Python module both read and write through this crate.
 //!
-//! Every error names the file, the line (where the format has lines), the field and the value.
+//! Every input error is an [`InputError`] naming the file, the line (where the format has lines),
+//! the field and the value; every output error is an [`output::OutputError`] naming the path.
+#![warn(missing_docs)]
 
 #[cfg(test)]
 mod fuzz;
 pub mod jc_file;
 pub mod material_file;
+mod material_raw;
+pub mod output;
 pub mod signal_csv;
 pub mod simulation_csv;
+mod test_columns;
 pub mod tests_csv;
 
 use std::fmt;
@@ -50,7 +57,8 @@ impl fmt::Display for InputError {
 impl std::error::Error for InputError {}
 
 impl InputError {
-    pub(crate) fn new(
+    /// An error at `file`, `line`, `field` with the offending `value` and the `reason`.
+    pub fn new(
         file: &Path,
         line: Option<usize>,
         field: &str,
@@ -69,7 +77,7 @@ impl InputError {
 }
 
 /// Reads a whole file as UTF-8 text with a located error.
-pub(crate) fn read_text(path: &Path) -> Result<String, InputError> {
+pub fn read_text(path: &Path) -> Result<String, InputError> {
     let bytes =
         std::fs::read(path).map_err(|e| InputError::new(path, None, "(file)", "", format!("cannot read: {e}")))?;
     decode_text(path, bytes)
@@ -132,7 +140,7 @@ pub(crate) fn line_of(text: &str, offset: usize) -> usize {
 /// the key is then looked for under its `[table]` header, or as an inline table entry
 /// (`density = { unit = ... }`) of its parent, or as the `[table]` header itself. A plain key is the
 /// first line assigning it in any table.
-pub(crate) fn toml_key_line(text: &str, key: &str) -> Option<usize> {
+pub fn toml_key_line(text: &str, key: &str) -> Option<usize> {
     let mut table = String::new();
     // Best match so far: (length of the matched path prefix, line).
     let mut best: Option<(usize, usize)> = None;
@@ -168,7 +176,7 @@ pub(crate) fn toml_key_line(text: &str, key: &str) -> Option<usize> {
 }
 
 /// Parses TOML into `T` with a located error (line and column of the offending text).
-pub(crate) fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T, InputError> {
+pub fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T, InputError> {
     toml::from_str(text).map_err(|e| {
         let span = e.span().map(|s| s.start.min(text.len())..s.end.min(text.len()));
         let line = span.as_ref().map(|s| line_of(text, s.start));

@@ -2,20 +2,21 @@
 //! from raw force signals (`signals = "dir"`: the recordings reduction turns them into the test
 //! rows first) and one that ends with the discrepancy diagnosis (`diagnose = true`).
 //!
-//! Both reuse the subcommands' own functions ([`super::recordings::reduce_signals`],
-//! [`super::diagnose::diagnose_files`]), so a project runs exactly what the commands run.
+//! Both reuse the subcommands' own functions ([`crate::recordings::reduce_signals`],
+//! [`crate::diagnose::diagnose_files`]), so a project runs exactly what the commands run.
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use cutcal_io::output::StagedDir;
+use cutcal_io::signal_csv::ChannelMap;
+use cutcal_io::tests_csv::{parse_tests_with_columns, Columns};
 use cutcal_model::{CuttingTest, JcParams};
 use serde::Serialize;
 
-use super::diagnose::{diagnose_files, DiagnoseArgs, ForwardModel};
-use super::recordings::{plot, reduce_signals, TestSummary};
-use crate::input::signal_csv::ChannelMap;
-use crate::input::tests_csv::{parse_tests_with_columns, Columns};
-use crate::output::StagedDir;
+use crate::diagnose::{diagnose_files, DiagnoseRequest, ForwardModel};
+use crate::error::{Context, Result};
+use crate::recordings::{plot, reduce_signals, TestSummary};
+use crate::Progress;
 
 /// The rows of a signals project: the reduction's output CSV, parsed.
 #[derive(Debug)]
@@ -43,7 +44,7 @@ pub fn signals_step(
     tests_rel: &Path,
     signals: &Path,
     signals_rel: &Path,
-    quiet: bool,
+    progress: &dyn Progress,
 ) -> Result<SignalRows> {
     let shown = |p: &Path| -> String {
         if p == tests {
@@ -54,7 +55,7 @@ pub fn signals_step(
             signals_rel.display().to_string()
         }
     };
-    let rec = reduce_signals(tests, signals, &ChannelMap::default(), None, quiet, &shown)?;
+    let rec = reduce_signals(tests, signals, &ChannelMap::default(), None, progress, &shown)?;
     let mut files = Vec::new();
     staged.write(MEASURED_TESTS, rec.csv.as_bytes())?;
     files.push(MEASURED_TESTS.to_string());
@@ -95,16 +96,14 @@ pub fn diagnosis_step(
 ) -> Result<(ProjectDiagnosis, Vec<String>)> {
     let source =
         format!("cutcal {} run {project}: JC set held fixed in the diagnosis ({})", env!("CARGO_PKG_VERSION"), jc.0);
-    staged.write("diagnosis_jc.toml", super::identify::jc_toml(jc.1, source)?.as_bytes())?;
-    let args = DiagnoseArgs {
+    staged.write("diagnosis_jc.toml", crate::dpzd_report::jc_toml(jc.1, source)?.as_bytes())?;
+    let args = DiagnoseRequest {
         recordings,
         simulation: None,
         material: Some(material),
         jc: Some(staged.path("diagnosis_jc.toml")),
         free_jc: false,
         model: ForwardModel::Oxley,
-        json: false,
-        plot: None,
     };
     let report = diagnose_files(&args).context("diagnosis of the project's tests")?;
     let text = report.to_text();

@@ -1,10 +1,10 @@
 //! The plots of a pipeline report: PSZ fields (paper Fig 4), DPZD vs fitted JC stress, flow curves.
 
-use anyhow::Result;
+use crate::error::Result;
 use cutcal_model::dpzd::ZoneSolution;
 use cutcal_model::JcParams;
 
-use super::svg::{Plot, Series};
+use crate::svg::{Plot, Series};
 
 fn field(z: &ZoneSolution, f: impl Fn(&cutcal_model::dpzd::ZonePoint) -> f64) -> Result<Vec<(f64, f64)>> {
     Ok(z.profile(201)?.iter().map(|p| (p.x_m * 1e3, f(p))).collect())

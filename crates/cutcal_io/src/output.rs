@@ -5,19 +5,45 @@ use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+/// A failed output operation: what was attempted, on which path, and the I/O error.
+#[derive(Debug, thiserror::Error)]
+#[error("{message}")]
+pub struct OutputError {
+    /// What failed, naming the path (e.g. `cannot create directory out/cards`).
+    pub message: String,
+    /// The underlying I/O error, when there is one.
+    #[source]
+    pub source: Option<std::io::Error>,
+}
+
+impl OutputError {
+    fn io(message: String) -> impl FnOnce(std::io::Error) -> Self {
+        move |e| Self { message, source: Some(e) }
+    }
+
+    fn plain(message: String) -> Self {
+        Self { message, source: None }
+    }
+}
+
+/// Result of an output operation.
+pub type Result<T, E = OutputError> = std::result::Result<T, E>;
 
 /// Writes `contents` to `path` atomically (temporary file in the same directory, fsync, rename).
 pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    fs::create_dir_all(dir).with_context(|| format!("cannot create directory {}", dir.display()))?;
-    let name = path.file_name().with_context(|| format!("{} has no file name", path.display()))?;
+    fs::create_dir_all(dir).map_err(OutputError::io(format!("cannot create directory {}", dir.display())))?;
+    let name = path.file_name().ok_or_else(|| OutputError::plain(format!("{} has no file name", path.display())))?;
     let tmp = dir.join(format!(".{}.tmp-{}", name.to_string_lossy(), std::process::id()));
     let result = (|| -> Result<()> {
-        let mut f = fs::File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
-        f.write_all(contents).with_context(|| format!("cannot write {}", tmp.display()))?;
+        let mut f = fs::File::create(&tmp).map_err(OutputError::io(format!("cannot create {}", tmp.display())))?;
+        f.write_all(contents).map_err(OutputError::io(format!("cannot write {}", tmp.display())))?;
         f.sync_all().ok();
-        fs::rename(&tmp, path).with_context(|| format!("cannot move {} to {}", tmp.display(), path.display()))?;
+        fs::rename(&tmp, path).map_err(OutputError::io(format!(
+            "cannot move {} to {}",
+            tmp.display(),
+            path.display()
+        )))?;
         Ok(())
     })();
     if result.is_err() {
@@ -39,13 +65,15 @@ impl StagedDir {
     /// Starts staging `target` (its parent is created).
     pub fn new(target: &Path) -> Result<Self> {
         let parent = target.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-        fs::create_dir_all(parent).with_context(|| format!("cannot create directory {}", parent.display()))?;
-        let name = target.file_name().with_context(|| format!("{} has no directory name", target.display()))?;
+        fs::create_dir_all(parent).map_err(OutputError::io(format!("cannot create directory {}", parent.display())))?;
+        let name = target
+            .file_name()
+            .ok_or_else(|| OutputError::plain(format!("{} has no directory name", target.display())))?;
         let staging = parent.join(format!(".{}.staging-{}", name.to_string_lossy(), std::process::id()));
         if staging.exists() {
-            fs::remove_dir_all(&staging).with_context(|| format!("cannot clear {}", staging.display()))?;
+            fs::remove_dir_all(&staging).map_err(OutputError::io(format!("cannot clear {}", staging.display())))?;
         }
-        fs::create_dir_all(&staging).with_context(|| format!("cannot create {}", staging.display()))?;
+        fs::create_dir_all(&staging).map_err(OutputError::io(format!("cannot create {}", staging.display())))?;
         Ok(Self { staging, target: target.to_path_buf(), committed: false })
     }
 
@@ -59,9 +87,9 @@ impl StagedDir {
     pub fn write(&self, relative: &str, contents: &[u8]) -> Result<()> {
         let p = self.path(relative);
         if let Some(d) = p.parent() {
-            fs::create_dir_all(d).with_context(|| format!("cannot create {}", d.display()))?;
+            fs::create_dir_all(d).map_err(OutputError::io(format!("cannot create {}", d.display())))?;
         }
-        fs::write(&p, contents).with_context(|| format!("cannot write {}", p.display()))
+        fs::write(&p, contents).map_err(OutputError::io(format!("cannot write {}", p.display())))
     }
 
     /// Replaces the target directory by the staged one.
@@ -69,13 +97,14 @@ impl StagedDir {
         if self.target.exists() {
             let old = self.staging.with_extension("old");
             let _ = fs::remove_dir_all(&old);
-            fs::rename(&self.target, &old).with_context(|| format!("cannot move away {}", self.target.display()))?;
+            fs::rename(&self.target, &old)
+                .map_err(OutputError::io(format!("cannot move away {}", self.target.display())))?;
             fs::rename(&self.staging, &self.target)
-                .with_context(|| format!("cannot move {} into place", self.target.display()))?;
+                .map_err(OutputError::io(format!("cannot move {} into place", self.target.display())))?;
             let _ = fs::remove_dir_all(&old);
         } else {
             fs::rename(&self.staging, &self.target)
-                .with_context(|| format!("cannot move {} into place", self.target.display()))?;
+                .map_err(OutputError::io(format!("cannot move {} into place", self.target.display())))?;
         }
         self.committed = true;
         Ok(self.target.clone())
