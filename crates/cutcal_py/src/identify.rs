@@ -139,7 +139,7 @@ pub fn identify(mf: &MaterialFile, test: &CuttingTest, req: &IdentifyRequest) ->
     let (dpzd, boot) = requests(req)?;
     let settings = dpzd.settings(mf).map_err(face)?;
     let out = identify_dpzd(mf, test, &settings).map_err(face)?;
-    let boot = run_bootstrap(&boot, mf, test, &out.settings_at_h_used(&settings)).map_err(face)?;
+    let boot = run_bootstrap(&boot, mf, test, &out.settings_at_h_used(&settings), &out).map_err(face)?;
     let json = report_json(&out.report, boot.as_ref()).map_err(face)?;
     let spread_json = boot.as_ref().map(serde_json::to_string).transpose().map_err(face)?;
     let profile = out.zone.profile(req.field_points).map_err(face)?;

@@ -18,8 +18,8 @@ use std::fmt::Write as _;
 use cutcal_ident::bootstrap::{
     bootstrap, BootstrapOptions, BootstrapReport, Measurement, RelativeUncertainty, Sample, UnstatedChoices,
 };
-use cutcal_ident::{identify_from_zone_with, IdentError, JcConstants, MultistartOptions};
-use cutcal_model::dpzd::{self, ShearPlaneState};
+use cutcal_ident::monte_carlo::{SampleObjective, WarmSampleIdentifier};
+use cutcal_ident::{IdentError, JcConstants, MultistartOptions};
 use cutcal_model::CuttingTest;
 use serde::Serialize;
 
@@ -86,6 +86,7 @@ pub fn run_bootstrap(
     mf: &MaterialFile,
     test: &CuttingTest,
     settings: &DpzdSettings,
+    nominal_fit: &crate::dpzd::DpzdOutcome,
 ) -> Result<Option<BootstrapOutcome>> {
     if args.bootstrap == 0 {
         return Ok(None);
@@ -104,40 +105,28 @@ pub fn run_bootstrap(
     let choices = args.choices()?;
     let bounds = jc_bounds(mf)?;
     let constants = JcConstants { eps0_per_s: 1.0, tm_c: mf.material.melting_c, tr_c: mf.material.room_c };
+    // Each sample is identified warm from the nominal fit (its first start is the nominal
+    // solution; `cutcal_ident::monte_carlo`), with the same objective and law as the nominal
+    // identification (issue 11 presets).
     let multistart = MultistartOptions { starts: args.bootstrap_starts, ..settings.multistart };
-    let identify = |s: &Sample| -> Result<cutcal_model::JcParams, IdentError> {
-        let m = &s.measurement;
-        let config = DpzdSettings { h_m: settings.h_m * s.h_factor, r: settings.r + s.r_offset, ..settings.clone() }
-            .config()
-            .map_err(|e| IdentError::InvalidOptions(e.chain_text()))?;
-        let t = test
-            .clone()
-            .with_forces(Some(m.cutting_force_n_per_m), Some(m.feed_force_n_per_m))?
-            .with_chip_thickness(Some(m.chip_thickness_m))?;
-        let state = ShearPlaneState::from_test(&t)?;
-        let zone = dpzd::solve(&mf.material, &state, &config)?;
-        // The same objective and law as the nominal identification (issue 11 presets).
-        match settings.preset {
-            Preset::Paper => Ok(identify_from_zone_with(
-                &zone,
-                settings.points,
-                cutcal_model::RateTerm::Unclamped,
-                &bounds,
-                constants,
-                &multistart,
-            )?
-            .jc),
-            Preset::Converged => Ok(cutcal_ident::identify_converged(
-                &zone,
-                &bounds,
-                constants,
-                &multistart,
-                &cutcal_ident::ConvergedOptions::default(),
-            )?
-            .identification
-            .jc),
+    let objective = match settings.preset {
+        Preset::Paper => {
+            SampleObjective::Uniform { points: settings.points, rate_term: cutcal_model::RateTerm::Unclamped }
         }
+        Preset::Converged => SampleObjective::Converged(cutcal_ident::ConvergedOptions::default()),
     };
+    let warm = WarmSampleIdentifier::new(
+        &mf.material,
+        test,
+        settings.config()?,
+        bounds,
+        constants,
+        objective,
+        multistart,
+        &nominal_fit.zone,
+        &nominal_fit.identification,
+    )?;
+    let identify = |s: &Sample| -> Result<cutcal_model::JcParams, IdentError> { warm.identify(s) };
     let options = BootstrapOptions { samples: args.bootstrap, seed: settings.multistart.seed, uncertainty, choices };
     let report = bootstrap(&nominal, &options, identify)
         .with_context(|| format!("bootstrap of test {} ({} samples)", test.id, args.bootstrap))?;

@@ -78,8 +78,13 @@ pub struct DpzdIdentifyReport {
     pub condition_number: Option<f64>,
     /// Multistart starts.
     pub starts: usize,
-    /// Starts reaching the best minimum.
+    /// Starts reaching the best minimum (including those stopped on joining it).
     pub starts_at_best: usize,
+    /// Starts stopped early by the multistart basin rule on joining a minimum an earlier start
+    /// converged to (Rinnooy Kan & Timmer 1987; `cutcal_ident::multistart`).
+    pub stopped_starts: usize,
+    /// Of `stopped_starts`, those that joined the best minimum.
+    pub stopped_at_best: usize,
     /// Index of the best start.
     pub best_start: usize,
     /// Starts that stopped at the LM iteration cap (excluded from the best; if every start does,
@@ -368,6 +373,8 @@ fn identify_dpzd_at(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSettin
         condition_number: s.condition_number,
         starts: id.starts,
         starts_at_best: id.starts_at_best,
+        stopped_starts: id.stopped_starts,
+        stopped_at_best: id.stopped_at_best,
         best_start: id.best_start,
         unconverged_starts: id.unconverged_starts,
         seed: settings.multistart.seed,

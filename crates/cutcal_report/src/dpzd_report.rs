@@ -91,8 +91,21 @@ pub fn render_table(r: &DpzdIdentifyReport) -> String {
     }
     let _ = writeln!(
         s,
-        "  objective (Eq 15) {:.2} MPa, RMS {:.2} MPa; {}/{} starts reached the best minimum (seed {})",
-        r.objective_mpa, r.rms_mpa, r.starts_at_best, r.starts, r.seed
+        "  objective (Eq 15) {:.2} MPa, RMS {:.2} MPa; {}/{} starts reached the best minimum (seed {}){}",
+        r.objective_mpa,
+        r.rms_mpa,
+        r.starts_at_best,
+        r.starts,
+        r.seed,
+        if r.stopped_starts > 0 {
+            format!(
+                "; {} of the starts were stopped on joining a minimum an earlier start had found ({} the best), \
+                 by the multistart basin rule",
+                r.stopped_starts, r.stopped_at_best
+            )
+        } else {
+            String::new()
+        }
     );
     if r.unconverged_starts > 0 {
         let _ = writeln!(

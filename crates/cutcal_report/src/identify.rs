@@ -143,7 +143,8 @@ pub fn identify_test(
     let test = pick_test(&all, test, &mf, tests)?.clone();
     let settings = req.settings(&mf)?;
     let outcome = identify_dpzd(&mf, &test, &settings)?;
-    let bootstrap = crate::bootstrap::run_bootstrap(boot, &mf, &test, &outcome.settings_at_h_used(&settings))?;
+    let bootstrap =
+        crate::bootstrap::run_bootstrap(boot, &mf, &test, &outcome.settings_at_h_used(&settings), &outcome)?;
     Ok(IdentifiedTest { material: mf, test, settings, outcome, bootstrap })
 }
 
