@@ -64,30 +64,21 @@ fn bench(c: &mut Criterion) {
     let zone = dpzd::solve(&material, &ShearPlaneState::from_test(&measured).unwrap(), &cfg15).unwrap();
     let co = ConvergedOptions::default();
     let nominal_fit = identify_converged(&zone, &bounds, consts, &MultistartOptions::new(32, 1), &co).unwrap();
-    let warm = WarmSampleIdentifier::new(
-        &material,
-        &measured,
-        cfg15,
-        bounds,
-        consts,
-        SampleObjective::Converged(co),
-        MultistartOptions::new(2, 1),
-        &zone,
-        &nominal_fit.identification,
-    )
-    .unwrap();
-    let warm1 = WarmSampleIdentifier::new(
-        &material,
-        &measured,
-        cfg15,
-        bounds,
-        consts,
-        SampleObjective::Converged(co),
-        MultistartOptions::new(1, 1),
-        &zone,
-        &nominal_fit.identification,
-    )
-    .unwrap();
+    let warm_with = |starts: usize| {
+        WarmSampleIdentifier::new(
+            &material,
+            &measured,
+            cfg15,
+            bounds,
+            consts,
+            SampleObjective::Converged(co),
+            MultistartOptions::new(starts, 1),
+            &zone,
+            &nominal_fit.identification,
+        )
+        .unwrap()
+    };
+    let (warm, warm1) = (warm_with(2), warm_with(1));
     // The `paper` objective (51 uniform points, unclamped), h = 0.1 mm as that preset.
     let zone_paper = dpzd::solve(&material, &ShearPlaneState::from_test(&measured).unwrap(), &cfg).unwrap();
     let paper = SampleObjective::Uniform { points: 51, rate_term: cutcal_model::RateTerm::Unclamped };

@@ -2,24 +2,12 @@
 //! CLI's message (`cutcal ...` prints `error: {e:#}`; Python raises the text after `error: `).
 
 use cutcal_io::InputError;
-use cutcal_report::ErrorKind as ReportKind;
 
-/// Which Python exception class an error becomes (all derive from `cutcal.CutcalError`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ErrorKind {
-    /// A file or value given by the user is malformed or out of range (`cutcal.InputError`).
-    Input,
-    /// The physics refused the state or a model solve failed (`cutcal.ModelError`).
-    Model,
-    /// The identification (Eq 15 fit, multistart, bootstrap) failed (`cutcal.IdentError`).
-    Ident,
-    /// A card could not be rendered (`cutcal.ExportError`).
-    Export,
-    /// The diagnosis failed (`cutcal.DiagnoseError`).
-    Diagnose,
-    /// Anything else the CLI reports (missing sections, unknown options): `cutcal.CutcalError`.
-    Other,
-}
+/// Which Python exception class an error becomes (all derive from `cutcal.CutcalError`): the
+/// report library's own kind (`Input` -> `cutcal.InputError`, `Model` -> `cutcal.ModelError`,
+/// `Ident` -> `cutcal.IdentError`, `Export` -> `cutcal.ExportError`, `Diagnose` ->
+/// `cutcal.DiagnoseError`, `Other` -> `cutcal.CutcalError`).
+pub use cutcal_report::ErrorKind;
 
 /// An error ready for Python: its class and the CLI's message.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -42,14 +30,7 @@ impl std::error::Error for FaceError {}
 fn kind_of(e: &(dyn std::error::Error + 'static)) -> Option<ErrorKind> {
     if let Some(r) = e.downcast_ref::<cutcal_report::Error>() {
         // The report library's error knows its typed cause under any context lines.
-        return match r.kind() {
-            ReportKind::Input => Some(ErrorKind::Input),
-            ReportKind::Model => Some(ErrorKind::Model),
-            ReportKind::Ident => Some(ErrorKind::Ident),
-            ReportKind::Export => Some(ErrorKind::Export),
-            ReportKind::Diagnose => Some(ErrorKind::Diagnose),
-            ReportKind::Other => None,
-        };
+        return Some(r.kind()).filter(|k| *k != ErrorKind::Other);
     }
     if e.is::<InputError>() {
         Some(ErrorKind::Input)
