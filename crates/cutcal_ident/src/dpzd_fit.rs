@@ -13,7 +13,9 @@ use serde::Serialize;
 
 use crate::error::IdentError;
 use crate::lm::{Bounds, Problem};
-use crate::multistart::{fit_statistics, multistart_from, FitStatistics, MultistartOptions, DPZD_BASIN_RADIUS};
+use crate::multistart::{
+    fit_statistics, multistart_from, FitStatistics, MultistartOptions, DPZD_BASIN_RADIUS, MLSL_SIGMA,
+};
 use crate::varpro::VarproProblem;
 
 /// Parameter names in the order of the optimisation vector.
@@ -293,6 +295,11 @@ pub struct JcIdentification {
     pub termination: crate::lm::Termination,
     /// Starts that hit the LM iteration cap (excluded from the best).
     pub unconverged_starts: usize,
+    /// Sample points from which no local search was started (MLSL's critical-distance filter,
+    /// [`crate::multistart::SampleFilter`]); they never count in `starts_at_best`.
+    pub filtered_starts: usize,
+    /// The MLSL critical distance applied (unit box of `(n, C, m)`; `None`: no filter).
+    pub critical_distance: Option<f64>,
 }
 
 /// Identifies JC from the `points` interior points of a zone solution (paper Eq 15).
@@ -362,6 +369,18 @@ pub fn identify_warm(
     options: &MultistartOptions,
     warm: Option<&DVector<f64>>,
 ) -> Result<JcIdentification, IdentError> {
+    identify_warm_with(problem, bounds, options, warm, true)
+}
+
+/// [`identify_warm`]; with `statistics` false the covariance, correlation, standard errors and
+/// condition number are not computed (`None`; the Monte-Carlo samples, which keep only the set).
+pub(crate) fn identify_warm_with(
+    problem: &ZoneFitProblem,
+    bounds: &JcBounds,
+    options: &MultistartOptions,
+    warm: Option<&DVector<f64>>,
+    statistics: bool,
+) -> Result<JcIdentification, IdentError> {
     let b = bounds.to_bounds()?;
     let projected = problem.projected(bounds.a_mpa, bounds.b_mpa);
     let nonlinear = Bounds::new(
@@ -374,7 +393,8 @@ pub fn identify_warm(
         return Err(IdentError::InvalidOptions(format!("a warm start needs [A, B, n, C, m], got {} values", w.len())));
     }
     let first = warm.map(|w| DVector::from_vec(vec![w[2], w[3], w[4]]));
-    let mut report = multistart_from(&projected, &nonlinear, options, radius, first.as_ref())?;
+    let sigma = options.sample_filter.sigma(Some(MLSL_SIGMA));
+    let mut report = multistart_from(&projected, &nonlinear, options, radius, sigma, first.as_ref())?;
     report.best.params = projected.full_parameters(&report.best.params);
     if report.best.termination == crate::lm::Termination::MaxIterations {
         // Every projected start stopped at the cap (a flat n-m valley): continue the best one with
@@ -402,7 +422,22 @@ pub fn identify_warm(
             params: report.best.params.iter().copied().collect(),
         });
     }
-    let stats = fit_statistics(problem, &b, &report.best.params, &report.best.residuals)?;
+    let stats = if statistics {
+        fit_statistics(problem, &b, &report.best.params, &report.best.residuals)?
+    } else {
+        let ssr = report.best.residuals.norm_squared();
+        let at = b.at_bounds(&report.best.params, 1e-6);
+        FitStatistics {
+            ssr,
+            rms: (ssr / report.best.residuals.len().max(1) as f64).sqrt(),
+            at_bounds: at.iter().map(|&i| b.names[i].clone()).collect(),
+            free: (0..b.len()).filter(|i| !at.contains(i)).map(|i| b.names[i].clone()).collect(),
+            covariance: None,
+            correlation: None,
+            std_errors: None,
+            condition_number: None,
+        }
+    };
     let jc = problem.constants.params(&report.best.params);
     Ok(JcIdentification {
         jc,
@@ -421,6 +456,8 @@ pub fn identify_warm(
         iterations: report.best.iterations,
         termination: report.best.termination,
         unconverged_starts: report.unconverged_starts,
+        filtered_starts: report.filtered_starts,
+        critical_distance: report.critical_distance,
     })
 }
 

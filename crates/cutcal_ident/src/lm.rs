@@ -98,6 +98,13 @@ impl Bounds {
         )
     }
 
+    /// [`Bounds::from_unit`] written into `out` (no allocation).
+    pub fn from_unit_into(&self, z: &DVector<f64>, out: &mut DVector<f64>) {
+        for i in 0..self.len() {
+            out[i] = (self.lower[i] + z[i] * (self.upper[i] - self.lower[i])).max(self.lower[i]).min(self.upper[i]);
+        }
+    }
+
     /// Unit-box coordinates of physical parameters (0 for fixed parameters).
     #[must_use]
     pub fn to_unit(&self, p: &DVector<f64>) -> DVector<f64> {
@@ -237,6 +244,15 @@ pub fn minimise_until<P: Problem + ?Sized>(
     let mut jac = DMatrix::zeros(m, n);
     let mut lambda = 1e-3;
     let mut r_trial = DVector::zeros(m);
+    // Work space of the step, allocated once: the gradient, the free set, J^T J on it (row-major,
+    // k x k for k free parameters), its damped copy and the step.
+    let mut g = DVector::zeros(n);
+    let mut free: Vec<usize> = Vec::with_capacity(n);
+    let mut jtj = vec![0.0; n * n];
+    let mut damped = vec![0.0; n * n];
+    let mut step = vec![0.0; n];
+    let mut z_trial = z.clone();
+    let mut p_trial = p.clone();
     let mut termination = Termination::MaxIterations;
     let mut iterations = 0;
     'outer: for it in 1..=options.max_iterations {
@@ -249,43 +265,47 @@ pub fn minimise_until<P: Problem + ?Sized>(
         for (k, w) in width.iter().enumerate() {
             jac.column_mut(k).scale_mut(*w);
         }
-        let g = jac.tr_mul(&r);
+        jac.tr_mul_to(&r, &mut g);
         // Active set: at a bound with the descent direction pointing out of the box.
-        let free: Vec<usize> = free_dims
-            .iter()
-            .copied()
-            .filter(|&i| !((z[i] <= 0.0 && g[i] > 0.0) || (z[i] >= 1.0 && g[i] < 0.0)))
-            .collect();
+        free.clear();
+        free.extend(
+            free_dims.iter().copied().filter(|&i| !((z[i] <= 0.0 && g[i] > 0.0) || (z[i] >= 1.0 && g[i] < 0.0))),
+        );
         let pg = free.iter().map(|&i| g[i] * g[i]).sum::<f64>().sqrt();
         if free.is_empty() || pg <= options.gradient_tolerance * (1.0 + cost) {
             termination = Termination::Gradient;
             break;
         }
-        let jf = DMatrix::from_fn(m, free.len(), |i, k| jac[(i, free[k])]);
-        let jtj = jf.tr_mul(&jf);
-        let gf = DVector::from_iterator(free.len(), free.iter().map(|&i| g[i]));
-        loop {
-            let mut a = jtj.clone();
-            for k in 0..free.len() {
-                a[(k, k)] += lambda * jtj[(k, k)].max(1e-12);
+        let k_free = free.len();
+        for (a, &i) in free.iter().enumerate() {
+            for (b, &j) in free.iter().enumerate().skip(a) {
+                let v = jac.column(i).dot(&jac.column(j));
+                jtj[a * k_free + b] = v;
+                jtj[b * k_free + a] = v;
             }
-            let step = match a.cholesky() {
-                Some(ch) => ch.solve(&(-&gf)),
-                None => {
-                    lambda *= 10.0;
-                    if lambda > 1e16 {
-                        termination = Termination::Stalled;
-                        break 'outer;
-                    }
-                    continue;
+        }
+        loop {
+            damped[..k_free * k_free].copy_from_slice(&jtj[..k_free * k_free]);
+            for k in 0..k_free {
+                damped[k * k_free + k] += lambda * jtj[k * k_free + k].max(1e-12);
+            }
+            for (k, &i) in free.iter().enumerate() {
+                step[k] = -g[i];
+            }
+            if !cholesky_solve(&mut damped[..k_free * k_free], &mut step[..k_free]) {
+                lambda *= 10.0;
+                if lambda > 1e16 {
+                    termination = Termination::Stalled;
+                    break 'outer;
                 }
-            };
-            let mut z_trial = z.clone();
+                continue;
+            }
+            z_trial.copy_from(&z);
             for (k, &i) in free.iter().enumerate() {
                 z_trial[i] = (z[i] + step[k]).clamp(0.0, 1.0);
             }
-            let dz = (&z_trial - &z).norm();
-            let p_trial = bounds.from_unit(&z_trial);
+            let dz = z_trial.iter().zip(z.iter()).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+            bounds.from_unit_into(&z_trial, &mut p_trial);
             let trial_cost = match checked_residuals(problem, &p_trial, &mut r_trial) {
                 Ok(c) => c,
                 Err(IdentError::Model(_)) | Err(IdentError::NonFinite { .. }) => f64::INFINITY,
@@ -293,8 +313,8 @@ pub fn minimise_until<P: Problem + ?Sized>(
             };
             if trial_cost < cost {
                 let rel = (cost - trial_cost) / cost.max(f64::MIN_POSITIVE);
-                z = z_trial;
-                p = p_trial;
+                std::mem::swap(&mut z, &mut z_trial);
+                std::mem::swap(&mut p, &mut p_trial);
                 std::mem::swap(&mut r, &mut r_trial);
                 cost = trial_cost;
                 lambda = (lambda / 3.0).max(1e-12);
@@ -320,6 +340,49 @@ pub fn minimise_until<P: Problem + ?Sized>(
         }
     }
     Ok(LmResult { params: p, residuals: r, ssr: cost, iterations, termination })
+}
+
+/// Solves `A x = b` in place for a symmetric positive definite `A` (row-major `k x k`, `k^2 =
+/// a.len()`, `k = b.len()`) by the Cholesky factorisation `A = L L^T` (Golub and Van Loan,
+/// *Matrix Computations*, Alg. 4.2.1) and two triangular solves; `b` becomes `x`. Returns false
+/// (leaving `a` and `b` overwritten) when a pivot is not positive: `A` is not positive definite.
+fn cholesky_solve(a: &mut [f64], b: &mut [f64]) -> bool {
+    let k = b.len();
+    // L overwrites the lower triangle of `a`.
+    for j in 0..k {
+        let mut d = a[j * k + j];
+        for l in 0..j {
+            d -= a[j * k + l] * a[j * k + l];
+        }
+        if !(d > 0.0) {
+            return false;
+        }
+        let d = d.sqrt();
+        a[j * k + j] = d;
+        for i in j + 1..k {
+            let mut v = a[i * k + j];
+            for l in 0..j {
+                v -= a[i * k + l] * a[j * k + l];
+            }
+            a[i * k + j] = v / d;
+        }
+    }
+    // L y = b, then L^T x = y.
+    for i in 0..k {
+        let mut v = b[i];
+        for l in 0..i {
+            v -= a[i * k + l] * b[l];
+        }
+        b[i] = v / a[i * k + i];
+    }
+    for i in (0..k).rev() {
+        let mut v = b[i];
+        for l in i + 1..k {
+            v -= a[l * k + i] * b[l];
+        }
+        b[i] = v / a[i * k + i];
+    }
+    true
 }
 
 #[cfg(test)]
@@ -369,6 +432,19 @@ pub(crate) mod tests {
         assert_eq!(r.iterations, 2);
         let r = minimise(&Rosen, &b, &DVector::from_vec(vec![-1.2, 1.0]), &LmOptions::precise()).unwrap();
         assert_ne!(r.termination, Termination::MaxIterations);
+    }
+
+    #[test]
+    fn cholesky_solves_a_spd_system_and_rejects_an_indefinite_one() {
+        // A = [[4, 2, 0], [2, 5, 1], [0, 1, 3]], x = (1, -1, 2): b = A x = (2, -1, 5) (by hand).
+        let mut a = vec![4.0, 2.0, 0.0, 2.0, 5.0, 1.0, 0.0, 1.0, 3.0];
+        let mut b = vec![2.0, -1.0, 5.0];
+        assert!(cholesky_solve(&mut a, &mut b));
+        for (x, want) in b.iter().zip([1.0, -1.0, 2.0]) {
+            assert!((x - want).abs() < 1e-14, "{b:?}");
+        }
+        let mut a = vec![1.0, 2.0, 2.0, 1.0];
+        assert!(!cholesky_solve(&mut a, &mut [1.0, 1.0]));
     }
 
     #[test]

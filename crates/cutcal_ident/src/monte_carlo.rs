@@ -22,10 +22,10 @@ use cutcal_model::{CuttingTest, JcParams, Material, RateTerm};
 use nalgebra::DVector;
 
 use crate::bootstrap::Sample;
-use crate::dpzd_fit::{identify_warm, JcBounds, JcConstants, JcIdentification, ZoneFitProblem};
+use crate::dpzd_fit::{identify_warm_with, JcBounds, JcConstants, JcIdentification, ZoneFitProblem};
 use crate::error::IdentError;
 use crate::multistart::MultistartOptions;
-use crate::quadrature::{identify_converged_warm, ConvergedOptions, WarmStart};
+use crate::quadrature::{identify_converged_warm_with, ConvergedOptions, WarmStart};
 
 /// The Eq 15 objective a sample is identified with (the nominal identification's).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -123,13 +123,19 @@ impl<'a> WarmSampleIdentifier<'a> {
                 let pts = zone.interior_points(points)?;
                 let w = vec![1.0; pts.len()];
                 let problem = ZoneFitProblem::weighted(pts, &w, self.constants, rate_term);
-                Ok(identify_warm(&problem, &self.bounds, &self.multistart, Some(&self.nominal))?.jc)
+                Ok(identify_warm_with(&problem, &self.bounds, &self.multistart, Some(&self.nominal), false)?.jc)
             }
-            (SampleObjective::Converged(o), Some(warm)) => {
-                Ok(identify_converged_warm(&zone, &self.bounds, self.constants, &self.multistart, &o, warm)?
-                    .identification
-                    .jc)
-            }
+            (SampleObjective::Converged(o), Some(warm)) => Ok(identify_converged_warm_with(
+                &zone,
+                &self.bounds,
+                self.constants,
+                &self.multistart,
+                &o,
+                warm,
+                false,
+            )?
+            .identification
+            .jc),
             (SampleObjective::Converged(_), None) => {
                 Err(IdentError::InvalidOptions("the converged objective needs the nominal rule".into()))
             }

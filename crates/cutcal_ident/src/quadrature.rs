@@ -19,7 +19,7 @@ use nalgebra::DVector;
 use serde::Serialize;
 
 use crate::dpzd_fit::{
-    identify_from_zone_with, identify_warm, JcBounds, JcConstants, JcIdentification, ZoneFitProblem,
+    identify_from_zone_with, identify_warm_with, JcBounds, JcConstants, JcIdentification, ZoneFitProblem,
 };
 use crate::error::IdentError;
 use crate::multistart::MultistartOptions;
@@ -306,6 +306,7 @@ pub fn identify_converged(
         id,
         (&[-0.5, 0.0, 0.5], None),
         &mut PanelCache::default(),
+        true,
     )
 }
 
@@ -354,15 +355,39 @@ pub fn identify_converged_warm(
     options: &ConvergedOptions,
     warm: &WarmStart,
 ) -> Result<ConvergedIdentification, IdentError> {
+    identify_converged_warm_with(zone, bounds, constants, multistart, options, warm, true)
+}
+
+/// [`identify_converged_warm`]; with `statistics` false no fit along the way computes the
+/// covariance and its relatives ([`crate::dpzd_fit::identify_warm`]): the Monte-Carlo samples.
+pub(crate) fn identify_converged_warm_with(
+    zone: &ZoneSolution,
+    bounds: &JcBounds,
+    constants: JcConstants,
+    multistart: &MultistartOptions,
+    options: &ConvergedOptions,
+    warm: &WarmStart,
+    statistics: bool,
+) -> Result<ConvergedIdentification, IdentError> {
     let p = DVector::from_vec(vec![warm.jc.a_pa / 1e6, warm.jc.b_pa / 1e6, warm.jc.n, warm.jc.c, warm.jc.m]);
     let mut cache = PanelCache::default();
     let rule = rule_with_cache(zone, &p, constants, RateTerm::Clamped, options, &warm.edges_rel, &mut cache)?;
     let problem = ZoneFitProblem::weighted(rule.points, &rule.weights, constants, RateTerm::Clamped);
-    let id = identify_warm(&problem, bounds, multistart, Some(&p))?;
+    let id = identify_warm_with(&problem, bounds, multistart, Some(&p), statistics)?;
     // Later rules are refined from this sample's first rule (a superset of the nominal panels
     // where this zone needed more): when it still meets the tolerance at the fit, it is reused.
     let edges = rule.edges_rel;
-    refit_until_converged(zone, bounds, constants, multistart, options, id, (&edges, Some(edges.clone())), &mut cache)
+    refit_until_converged(
+        zone,
+        bounds,
+        constants,
+        multistart,
+        options,
+        id,
+        (&edges, Some(edges.clone())),
+        &mut cache,
+        statistics,
+    )
 }
 
 /// The refit loop of [`identify_converged`]: rebuild the rule at the current fit, refit, until
@@ -381,6 +406,7 @@ fn refit_until_converged(
     mut id: JcIdentification,
     (first_edges, fitted_on): (&[f64], Option<Vec<f64>>),
     cache: &mut PanelCache,
+    statistics: bool,
 ) -> Result<ConvergedIdentification, IdentError> {
     let rate = RateTerm::Clamped;
     let warm = fitted_on.is_some();
@@ -399,7 +425,7 @@ fn refit_until_converged(
             });
         }
         let problem = ZoneFitProblem::weighted(rule.points, &rule.weights, constants, rate);
-        let next = identify_warm(&problem, bounds, multistart, warm.then_some(&p))?;
+        let next = identify_warm_with(&problem, bounds, multistart, warm.then_some(&p), statistics)?;
         let q = vector(&next);
         last_change = p.iter().zip(q.iter()).map(|(a, b)| (a - b).abs() / a.abs().max(1e-12)).fold(0.0, f64::max);
         id = next;

@@ -44,7 +44,8 @@ pub struct VarproProblem<'a> {
 struct Evaluation {
     q: [f64; 3],
     valid: bool,
-    basis: Vec<Basis>,
+    /// `(u, v)` of every point, scaled by `sqrt(w)` (the derivatives are formed by the Jacobian).
+    basis: Vec<[f64; 2]>,
     linear: Option<LinearSolution>,
     /// `n` of `eps_n`, `m` of `theta_m` (`None`: not computed yet).
     n_key: Option<u64>,
@@ -64,18 +65,6 @@ pub struct LinearSolution {
     pub a_free: bool,
     /// B strictly inside its box.
     pub b_free: bool,
-}
-
-/// Per-point basis values and their derivatives w.r.t. `(n, C, m)`, all scaled by `sqrt(w)`.
-#[derive(Debug, Clone, Copy, Default)]
-struct Basis {
-    u: f64,
-    v: f64,
-    y: f64,
-    /// `du/dC`, `du/dm` (`du/dn = 0`).
-    du: [f64; 2],
-    /// `dv/dn`, `dv/dC`, `dv/dm`.
-    dv: [f64; 3],
 }
 
 impl<'a> VarproProblem<'a> {
@@ -106,13 +95,14 @@ impl<'a> VarproProblem<'a> {
             e.basis.clear();
             let mut s = [0.0; 5];
             for ((c, en), tm) in self.cached.iter().zip(&e.eps_n).zip(&e.theta_m) {
-                let b = Self::basis_from(c, *en, *tm, cc);
-                s[0] += b.u * b.u;
-                s[1] += b.u * b.v;
-                s[2] += b.v * b.v;
-                s[3] += b.u * b.y;
-                s[4] += b.v * b.y;
-                e.basis.push(b);
+                let (u, v) = Self::bases(c, *en, *tm, cc);
+                let y = c.sqrt_weight * c.target_mpa;
+                s[0] += u * u;
+                s[1] += u * v;
+                s[2] += v * v;
+                s[3] += u * y;
+                s[4] += v * y;
+                e.basis.push([u, v]);
             }
             e.linear = Some(solve_box(s, self.a_box, self.b_box));
             e.q = key;
@@ -121,50 +111,40 @@ impl<'a> VarproProblem<'a> {
         e
     }
 
-    /// Bases `u`, `v` and their derivatives at one point from the powers `eps^n`, `theta^m`.
+    /// Bases `u`, `v` at one point from the powers `eps^n`, `theta^m`.
     ///
     /// **Source:** paper Eq 16 (the JC law), split as `A u + B v`.
     #[inline]
-    fn basis_from(c: &CachedPoint, en: f64, tm: f64, cc: f64) -> Basis {
-        let l_eps = c.ln_strain.unwrap_or(0.0);
-        let l_th = c.ln_theta.unwrap_or(0.0);
-        let sw = c.sqrt_weight;
-        let rf = 1.0 + cc * c.ln_rate;
-        let g = 1.0 - tm;
-        let u = sw * rf * g;
-        let v = en * u;
-        let du_dc = sw * c.ln_rate * g;
-        let du_dm = -sw * rf * tm * l_th;
-        Basis { u, v, y: sw * c.target_mpa, du: [du_dc, du_dm], dv: [v * l_eps, en * du_dc, en * du_dm] }
+    fn bases(c: &CachedPoint, en: f64, tm: f64, cc: f64) -> (f64, f64) {
+        let u = c.sqrt_weight * (1.0 + cc * c.ln_rate) * (1.0 - tm);
+        (u, en * u)
     }
 
-    /// Bases `u`, `v` at `q` (and, with `derivs`, their derivatives).
+    /// Derivatives `(du/dC, du/dm)` and `(dv/dn, dv/dC, dv/dm)` at one point (`du/dn = 0`) from
+    /// the powers and the bases.
     ///
-    /// **Source:** paper Eq 16 (the JC law), split as `A u + B v`.
+    /// **Source:** paper Eq 16 differentiated: `u = sqrt(w) (1 + C L) (1 - theta^m)`, `v = eps^n u`.
     #[inline]
-    fn basis(c: &CachedPoint, q: &DVector<f64>, derivs: bool) -> Basis {
-        let (n, cc, m) = (q[0], q[1], q[2]);
-        let en = power(c.ln_strain, n, n == 0.0);
-        let tm = power(c.ln_theta, m, false);
-        if derivs {
-            return Self::basis_from(c, en, tm, cc);
-        }
+    fn derivatives(c: &CachedPoint, en: f64, tm: f64, cc: f64, v: f64) -> ([f64; 2], [f64; 3]) {
         let sw = c.sqrt_weight;
-        let u = sw * (1.0 + cc * c.ln_rate) * (1.0 - tm);
-        Basis { u, v: en * u, y: sw * c.target_mpa, ..Basis::default() }
+        let du_dc = sw * c.ln_rate * (1.0 - tm);
+        let du_dm = -sw * (1.0 + cc * c.ln_rate) * tm * c.ln_theta.unwrap_or(0.0);
+        ([du_dc, du_dm], [v * c.ln_strain.unwrap_or(0.0), en * du_dc, en * du_dm])
     }
 
     /// The optimal `(A, B)` inside their box at `q`.
     #[must_use]
     pub fn linear_solution(&self, q: &DVector<f64>) -> LinearSolution {
+        let (n, cc, m) = (q[0], q[1], q[2]);
         let mut s = [0.0; 5];
         for c in self.cached {
-            let b = Self::basis(c, q, false);
-            s[0] += b.u * b.u;
-            s[1] += b.u * b.v;
-            s[2] += b.v * b.v;
-            s[3] += b.u * b.y;
-            s[4] += b.v * b.y;
+            let (u, v) = Self::bases(c, power(c.ln_strain, n, n == 0.0), power(c.ln_theta, m, false), cc);
+            let y = c.sqrt_weight * c.target_mpa;
+            s[0] += u * u;
+            s[1] += u * v;
+            s[2] += v * v;
+            s[3] += u * y;
+            s[4] += v * y;
         }
         solve_box(s, self.a_box, self.b_box)
     }
@@ -244,8 +224,8 @@ impl Problem for VarproProblem<'_> {
     fn residuals(&self, q: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
         let e = self.evaluate(q);
         let l = e.linear.unwrap_or_else(|| solve_box([0.0; 5], self.a_box, self.b_box));
-        for (o, b) in out.iter_mut().zip(&e.basis) {
-            *o = l.a_mpa * b.u + l.b_mpa * b.v - b.y;
+        for ((o, [u, v]), c) in out.iter_mut().zip(&e.basis).zip(self.cached) {
+            *o = l.a_mpa * u + l.b_mpa * v - c.sqrt_weight * c.target_mpa;
         }
         Ok(())
     }
@@ -257,28 +237,32 @@ impl Problem for VarproProblem<'_> {
         let e = self.evaluate(q);
         let l = e.linear.unwrap_or_else(|| solve_box([0.0; 5], self.a_box, self.b_box));
         let (a, b) = (l.a_mpa, l.b_mpa);
-        let basis = &e.basis;
+        let cc = e.q[1];
         // d_j = dPhi/dq_j c and the sums needed for dc_j.
         // s_ur[j] = du_j . r, s_vr[j] = dv_j . r, s_ud[j] = u . d_j, s_vd[j] = v . d_j.
         let (mut s_ur, mut s_vr, mut s_ud, mut s_vd) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
         let (mut uu, mut uv, mut vv) = (0.0, 0.0, 0.0);
-        let rows = basis.len();
+        let rows = e.basis.len();
         // Column-major storage: column j is `cols[j * rows..(j + 1) * rows]`.
         let cols = out.as_mut_slice();
-        for (i, bs) in basis.iter().enumerate() {
-            let r = a * bs.u + b * bs.v - bs.y;
-            let du = [0.0, bs.du[0], bs.du[1]];
+        for (i, (([u, v], c), (en, tm))) in
+            e.basis.iter().zip(self.cached).zip(e.eps_n.iter().zip(&e.theta_m)).enumerate()
+        {
+            let (u, v) = (*u, *v);
+            let (du2, dv) = Self::derivatives(c, *en, *tm, cc, v);
+            let r = a * u + b * v - c.sqrt_weight * c.target_mpa;
+            let du = [0.0, du2[0], du2[1]];
             for j in 0..3 {
-                let d = a * du[j] + b * bs.dv[j];
+                let d = a * du[j] + b * dv[j];
                 cols[j * rows + i] = d;
                 s_ur[j] += du[j] * r;
-                s_vr[j] += bs.dv[j] * r;
-                s_ud[j] += bs.u * d;
-                s_vd[j] += bs.v * d;
+                s_vr[j] += dv[j] * r;
+                s_ud[j] += u * d;
+                s_vd[j] += v * d;
             }
-            uu += bs.u * bs.u;
-            uv += bs.u * bs.v;
-            vv += bs.v * bs.v;
+            uu += u * u;
+            uv += u * v;
+            vv += v * v;
         }
         for j in 0..3 {
             let (da, db) = match (l.a_free, l.b_free) {
@@ -292,8 +276,8 @@ impl Problem for VarproProblem<'_> {
                 (false, false) => (0.0, 0.0),
             };
             if da != 0.0 || db != 0.0 {
-                for (o, bs) in cols[j * rows..(j + 1) * rows].iter_mut().zip(basis) {
-                    *o += da * bs.u + db * bs.v;
+                for (o, [u, v]) in cols[j * rows..(j + 1) * rows].iter_mut().zip(&e.basis) {
+                    *o += da * u + db * v;
                 }
             }
         }

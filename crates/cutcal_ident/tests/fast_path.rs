@@ -2,9 +2,10 @@
 //! previous ones on C38 test 3 (paper Tables 2, 3 and 6), original and enhanced DPZD, `paper`
 //! and `converged` presets.
 //!
-//! - The multistart basin rule (`cutcal_ident::multistart`) against every start run to
-//!   convergence (`BasinStop::Off`, the previous path): the same set to 1e-8 relative, and the
-//!   same "starts at the best" count, with the stopped starts reported.
+//! - The multistart basin rule and the MLSL sample filter (`cutcal_ident::multistart`) against
+//!   every start run to convergence (`BasinStop::Off`, `SampleFilter::Off`, the previous path):
+//!   the same set to 1e-8 relative; where every start of the previous path reached the best, so
+//!   does every local search of the fast one; the stopped and filtered starts are reported.
 //! - The warm-started Monte-Carlo sample (`cutcal_ident::monte_carlo`, 2 starts, the first at the
 //!   nominal solution) against the cold 32-start identification `cutcal identify` runs, on seeded
 //!   draws of the measurements (3 %/5 %) and of the unstated choices (h x [0.5, 2], r +- 1):
@@ -13,7 +14,7 @@
 
 use cutcal_ident::bootstrap::{sample, Measurement, RelativeUncertainty, UnstatedChoices};
 use cutcal_ident::monte_carlo::{SampleObjective, WarmSampleIdentifier};
-use cutcal_ident::multistart::BasinStop;
+use cutcal_ident::multistart::{BasinStop, SampleFilter};
 use cutcal_ident::quadrature::{identify_converged, ConvergedOptions};
 use cutcal_ident::{identify_from_zone_with, JcBounds, JcConstants, JcIdentification, MultistartOptions};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState, ZoneSolution};
@@ -55,8 +56,11 @@ fn max_rel(a: &JcParams, b: &JcParams) -> f64 {
     vector(a).iter().zip(vector(b)).map(|(x, y)| (x - y).abs() / y.abs().max(1e-12)).fold(0.0, f64::max)
 }
 
+/// 32 starts; `Off` turns both the basin rule and the MLSL filter off (the previous path), `Auto`
+/// is the default (both on in the DPZD identification).
 fn options(basin: BasinStop) -> MultistartOptions {
-    MultistartOptions { basin_stop: basin, ..MultistartOptions::new(32, 1) }
+    let sample_filter = if basin == BasinStop::Off { SampleFilter::Off } else { SampleFilter::Auto };
+    MultistartOptions { basin_stop: basin, sample_filter, ..MultistartOptions::new(32, 1) }
 }
 
 fn paper(z: &ZoneSolution, basin: BasinStop) -> JcIdentification {
@@ -78,15 +82,27 @@ fn basin_rule_gives_the_previous_sets_both_models_both_presets() {
                 let previous = run(&z, BasinStop::Off);
                 let fast = run(&z, BasinStop::Auto);
                 let d = max_rel(&fast.jc, &previous.jc);
+                let searched = fast.starts - fast.filtered_starts;
                 println!(
-                    "{name} h {h:e} {preset}: max rel. diff {d:.1e}, stopped {} of {} (at best {}), starts at best {} vs {}",
-                    fast.stopped_starts, fast.starts, fast.stopped_at_best, fast.starts_at_best, previous.starts_at_best
+                    "{name} h {h:e} {preset}: max rel. diff {d:.1e}, {searched} of {} searched (critical distance \
+                     {:?}), stopped {} (at best {}), starts at best {} vs {}",
+                    fast.starts,
+                    fast.critical_distance,
+                    fast.stopped_starts,
+                    fast.stopped_at_best,
+                    fast.starts_at_best,
+                    previous.starts_at_best
                 );
                 assert!(d <= 1e-8, "{name} h {h} {preset}: {:?} vs {:?}", vector(&fast.jc), vector(&previous.jc));
-                assert_eq!(fast.starts_at_best, previous.starts_at_best, "{name} h {h} {preset}");
-                assert_eq!(previous.stopped_starts, 0);
-                // The rule did stop starts, and every stopped start is reported (here all joined the best).
-                assert!(fast.stopped_starts > 0 && fast.stopped_starts < fast.starts);
+                assert_eq!((previous.stopped_starts, previous.filtered_starts), (0, 0));
+                assert_eq!(previous.critical_distance, None);
+                // Every start of the previous path reached the best here, so every search of the
+                // fast path must (a filtered start never counts as having reached it).
+                assert_eq!(previous.starts_at_best, previous.starts, "{name} h {h} {preset}");
+                assert_eq!(fast.starts_at_best, searched, "{name} h {h} {preset}");
+                // The filter and the rule acted, and every skipped start is reported.
+                assert!(fast.filtered_starts > 0 && searched > 1, "{name} h {h} {preset}");
+                assert!(fast.stopped_starts > 0 && fast.stopped_starts < searched);
                 assert!(fast.stopped_at_best <= fast.stopped_starts);
             }
         }

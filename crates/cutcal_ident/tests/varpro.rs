@@ -1,13 +1,14 @@
 //! Integration tests of the variable-projection identification (`cutcal_ident::varpro`, Golub and
 //! Pereyra 1973): on zone data synthesised from random JC truths (the law of paper Eq 16 at the
 //! strain, strain rate and temperature of the C38 test 3 zone, paper Tables 2, 3 and 6), the
-//! projected solution equals the full 5-parameter LM solution of the same objective; and the
-//! analytic Jacobian of the projected residual equals central finite differences.
+//! projected solution equals the full 5-parameter LM solution of the same objective; the MLSL
+//! sample filter of the default multistart reaches the minimum of the exhaustive multistart; and
+//! the analytic Jacobian of the projected residual equals central finite differences.
 
 use std::sync::OnceLock;
 
 use cutcal_ident::dpzd_fit::{identify, ZoneFitProblem};
-use cutcal_ident::multistart::multistart;
+use cutcal_ident::multistart::{multistart, SampleFilter};
 use cutcal_ident::{Bounds, JcBounds, JcConstants, MultistartOptions, Problem};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState, ZonePoint};
 use cutcal_model::{CuttingTest, JcParams, RateTerm};
@@ -75,7 +76,8 @@ proptest! {
         let noise = if noisy { 0.01 } else { 0.0 };
         let pts = synthetic(&truth, rate, noise, phase);
         let problem = ZoneFitProblem::weighted(pts, &[1.0; 51], CONST, rate);
-        let opts = MultistartOptions::new(16, 1);
+        // Every start searched on both sides: this test is about the projection, not the filter.
+        let opts = MultistartOptions { sample_filter: SampleFilter::Off, ..MultistartOptions::new(16, 1) };
         let full = multistart(&problem, &BOUNDS.to_bounds().unwrap(), &opts).unwrap();
         let vp = match identify(&problem, &BOUNDS, &opts) {
             Ok(v) => v,
@@ -100,6 +102,45 @@ proptest! {
                 prop_assert!(rel(*g, t) <= 1e-6, "{} vs truth {}", g, t);
             }
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// The default multistart (MLSL sample filter with `MLSL_SIGMA`, and the basin rule) reaches
+    /// the minimum of the exhaustive one (every start searched to convergence) at 16 and 32
+    /// starts: on exact data the same parameters (the truth, 1e-6); on noisy data the same
+    /// objective to 1e-3 relative. The noisy bound is the filter's measured limit: in a flat n-m
+    /// valley a filtered sample point can lie in the basin of a minimum whose objective differs by
+    /// 1e-4 (found with `CUTCAL_FUZZ_CASES=2000`: SSR 1490.50 vs 1490.22, m 0.727 vs 0.617).
+    /// With `sigma = 4` this test fails (exact data, 16 starts: SSR 11 against 4e-26).
+    #[test]
+    fn the_mlsl_filter_reaches_the_exhaustive_minimum(
+        a in 100.0..1500.0f64, b_over_a in 0.2..1.3f64, n in 0.1..0.6f64, c in 0.005..0.08f64, m in 0.7..1.3f64,
+        clamped in any::<bool>(), noisy in any::<bool>(), phase in 0.0..6.0f64, many in any::<bool>(),
+    ) {
+        let truth = JcParams::new(a * 1e6, a * b_over_a * 1e6, n, c, m, 1.0, 1460.0, 20.0).unwrap();
+        let rate = if clamped { RateTerm::Clamped } else { RateTerm::Unclamped };
+        let noise = if noisy { 0.01 } else { 0.0 };
+        let problem = ZoneFitProblem::weighted(synthetic(&truth, rate, noise, phase), &[1.0; 51], CONST, rate);
+        let starts = if many { 32 } else { 16 };
+        let filtered = MultistartOptions::new(starts, 1);
+        let every = MultistartOptions {
+            sample_filter: SampleFilter::Off,
+            basin_stop: cutcal_ident::multistart::BasinStop::Off,
+            ..filtered
+        };
+        let (Ok(f), Ok(e)) = (identify(&problem, &BOUNDS, &filtered), identify(&problem, &BOUNDS, &every)) else {
+            // A typed non-convergence of either is not a miss of the filter.
+            return Ok(());
+        };
+        prop_assert!(f.critical_distance.is_some() && f.filtered_starts + f.starts_at_best <= starts);
+        let (sf, se) = (f.objective_mpa.powi(2), e.objective_mpa.powi(2));
+        let scale = se.max(1e-18 * 51.0 * a * a);
+        let tol = if noisy { 1e-3 } else { 1e-9 };
+        prop_assert!(sf - se <= tol * scale, "filtered SSR {} vs exhaustive {} ({} of {} searched)",
+            sf, se, starts - f.filtered_starts, starts);
     }
 }
 

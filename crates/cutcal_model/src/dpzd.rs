@@ -128,8 +128,15 @@ impl ShearPlaneState {
 /// How the zone converts plastic work into temperature.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 enum HeatCapacity {
-    Constant { rho_cp_j_per_m3_k: f64 },
-    Polynomial { rho_cp: TempPolynomial },
+    Constant {
+        rho_cp_j_per_m3_k: f64,
+    },
+    Polynomial {
+        rho_cp: TempPolynomial,
+        /// `rho_cp`'s antiderivative polynomial (rebuilt on use when absent, after deserialising).
+        #[serde(skip)]
+        heat_content: Option<TempPolynomial>,
+    },
 }
 
 /// One point of the zone fields.
@@ -213,7 +220,10 @@ pub fn solve(material: &Material, state: &ShearPlaneState, config: &DpzdConfig) 
     }
     let heat = match config.variant {
         DpzdVariant::Original { rho_cp_j_per_m3_k } => HeatCapacity::Constant { rho_cp_j_per_m3_k },
-        DpzdVariant::Enhanced { .. } => HeatCapacity::Polynomial { rho_cp: material.thermal.rho_cp.clone() },
+        DpzdVariant::Enhanced { .. } => HeatCapacity::Polynomial {
+            rho_cp: material.thermal.rho_cp.clone(),
+            heat_content: Some(material.thermal.rho_cp.antiderivative_polynomial()),
+        },
     };
     let mut sol = ZoneSolution {
         config: *config,
@@ -289,16 +299,23 @@ impl ZoneSolution {
     /// **Source:** paper Eq 11 with Eqs 2 and 8 (exact integral of a linear stress times a power law).
     #[must_use]
     pub fn work_j_per_m3(&self, x_m: f64) -> f64 {
+        let u = kinematics::distance_to_boundary(x_m, self.config.zone_thickness_m);
+        self.work_from_power(x_m, u, u.powf(self.config.r + 1.0))
+    }
+
+    /// [`Self::work_j_per_m3`] from `u` and `u^(r+1)` (`u^(r+2) = u^(r+1) u`).
+    ///
+    /// **Source:** paper Eq 11 with Eqs 2 and 8 (as [`Self::work_j_per_m3`]).
+    fn work_from_power(&self, x_m: f64, u: f64, u_r1: f64) -> f64 {
         let r = self.config.r;
         let k = self.strain_scale();
         let tm = self.state.tau_max_pa;
-        let half =
-            |tau0: f64, u: f64| k * (tau0 * u.powf(r + 1.0) / (r + 1.0) + (tm - tau0) * u.powf(r + 2.0) / (r + 2.0));
-        let u = kinematics::distance_to_boundary(x_m, self.config.zone_thickness_m);
+        // int_0^u of (tau0 + (tm - tau0) s) s^r ds, times K (the u = 1 case needs no power).
+        let half = |tau0: f64, u: f64, u_r1: f64| k * u_r1 * (tau0 / (r + 1.0) + (tm - tau0) * u / (r + 2.0));
         if x_m >= 0.0 {
-            half(self.tau0_cd_pa, u)
+            half(self.tau0_cd_pa, u, u_r1)
         } else {
-            half(self.tau0_cd_pa, 1.0) + half(self.tau0_ef_pa, 1.0) - half(self.tau0_ef_pa, u)
+            half(self.tau0_cd_pa, 1.0, 1.0) + half(self.tau0_ef_pa, 1.0, 1.0) - half(self.tau0_ef_pa, u, u_r1)
         }
     }
 
@@ -311,27 +328,22 @@ impl ZoneSolution {
     fn temperature_from_work(&self, work: f64, what: &str) -> Result<f64, ModelError> {
         let t = match &self.heat {
             HeatCapacity::Constant { rho_cp_j_per_m3_k } => self.room_c + work / rho_cp_j_per_m3_k,
-            HeatCapacity::Polynomial { rho_cp } => {
-                let m = Material {
-                    name: String::new(),
-                    thermal: crate::material::ThermalProperties {
-                        rho_cp: rho_cp.clone(),
-                        density: TempPolynomial::constant(1.0),
-                        conductivity: TempPolynomial::constant(1.0),
-                        valid_from_c: self.room_c,
-                        valid_to_c: self.melting_c,
-                    },
-                    yield_strength: None,
-                    melting_c: self.melting_c,
-                    room_c: self.room_c,
-                    elastic: None,
-                };
-                m.temperature_after_heating(self.room_c, work).map_err(|e| match e {
-                    ModelError::AboveMelting { temperature_c, melting_c, .. } => {
-                        ModelError::AboveMelting { what: what.into(), temperature_c, melting_c }
+            HeatCapacity::Polynomial { rho_cp, heat_content } => {
+                let rebuilt;
+                let heat_content = match heat_content {
+                    Some(h) => h,
+                    None => {
+                        rebuilt = rho_cp.antiderivative_polynomial();
+                        &rebuilt
                     }
-                    other => other,
-                })?
+                };
+                crate::material::adiabatic_temperature(rho_cp, heat_content, self.room_c, work, self.melting_c)
+                    .map_err(|e| match e {
+                        ModelError::AboveMelting { temperature_c, melting_c, .. } => {
+                            ModelError::AboveMelting { what: what.into(), temperature_c, melting_c }
+                        }
+                        other => other,
+                    })?
             }
         };
         if t >= self.melting_c || t.is_nan() {
@@ -346,10 +358,13 @@ impl ZoneSolution {
     /// temperature, which [`solve`] already checked).
     pub fn point(&self, x_m: f64) -> Result<ZonePoint, ModelError> {
         let h = self.config.zone_thickness_m;
-        let gamma = kinematics::gamma(x_m, h, self.config.r, self.gamma_ab);
-        let gamma_dot = kinematics::gamma_dot(x_m, h, self.config.r, self.gamma_dot_ab_per_s);
+        // One power for the three fields: u^r (Eq 2), u^(r+1) (Eqs 5 and 11), u^(r+2) (Eq 11).
+        let u = kinematics::distance_to_boundary(x_m, h);
+        let u_r = u.powf(self.config.r);
+        let gamma = kinematics::gamma_from_power(x_m, u_r * u, self.gamma_ab);
+        let gamma_dot = self.gamma_dot_ab_per_s * u_r;
         let tau = self.tau_pa(x_m);
-        let work = self.work_j_per_m3(x_m);
+        let work = self.work_from_power(x_m, u, u_r * u);
         let s3 = 3f64.sqrt();
         Ok(ZonePoint {
             x_m,

@@ -96,11 +96,19 @@ pub fn gamma_dot(x_m: f64, zone_thickness_m: f64, r: f64, gamma_dot_ab: f64) -> 
 /// **Source:** paper Eq 5 (integrated in the direction of flow, CD to EF).
 #[must_use]
 pub fn gamma(x_m: f64, zone_thickness_m: f64, r: f64, gamma_ab: f64) -> f64 {
-    let u = distance_to_boundary(x_m, zone_thickness_m).powf(r + 1.0);
+    gamma_from_power(x_m, distance_to_boundary(x_m, zone_thickness_m).powf(r + 1.0), gamma_ab)
+}
+
+/// [`gamma`] from `u^(r+1)`, `u` = [`distance_to_boundary`] (for callers that already hold the
+/// power).
+///
+/// **Source:** paper Eq 5.
+#[must_use]
+pub fn gamma_from_power(x_m: f64, u_pow_r_plus_1: f64, gamma_ab: f64) -> f64 {
     if x_m >= 0.0 {
-        gamma_ab * u
+        gamma_ab * u_pow_r_plus_1
     } else {
-        gamma_ab * (2.0 - u)
+        gamma_ab * (2.0 - u_pow_r_plus_1)
     }
 }
 

@@ -151,46 +151,67 @@ impl Material {
     ///
     /// Returns [`ModelError::AboveMelting`] if the heat would take the material to or past `Tm`.
     pub fn temperature_after_heating(&self, from_c: f64, heat_j_per_m3: f64) -> Result<f64, ModelError> {
-        check_finite("heat_j_per_m3", heat_j_per_m3)?;
-        if heat_j_per_m3 < 0.0 {
-            return Err(ModelError::out_of_range("heat_j_per_m3", heat_j_per_m3, "heat >= 0 J/m^3"));
-        }
-        let top = self.melting_c;
-        let h_top = self.heat_content_j_per_m3(from_c, top);
-        if heat_j_per_m3 >= h_top {
-            return Err(ModelError::AboveMelting {
-                what: "adiabatic temperature".into(),
-                temperature_c: top + (heat_j_per_m3 - h_top) / self.thermal.rho_cp.value(top).max(1.0),
-                melting_c: top,
-            });
-        }
-        let (mut lo, mut hi) = (from_c, top);
-        let c0 = self.thermal.rho_cp.value(from_c);
-        let mut t = (from_c + heat_j_per_m3 / c0).clamp(lo, hi);
-        for _ in 0..100 {
-            let f = self.heat_content_j_per_m3(from_c, t) - heat_j_per_m3;
-            if f > 0.0 {
-                hi = t;
-            } else {
-                lo = t;
-            }
-            let df = self.thermal.rho_cp.value(t);
-            let mut next = t - f / df;
-            if !(next > lo && next < hi) || df <= 0.0 {
-                next = 0.5 * (lo + hi);
-            }
-            if (next - t).abs() < 1e-10 * (1.0 + t.abs()) || hi - lo < 1e-10 {
-                return Ok(next);
-            }
-            t = next;
-        }
-        Err(ModelError::NoConvergence {
-            what: "adiabatic temperature (Newton)".into(),
-            iterations: 100,
-            last_change: hi - lo,
-            tolerance: 1e-10,
-        })
+        let heat_content = self.thermal.rho_cp.antiderivative_polynomial();
+        adiabatic_temperature(&self.thermal.rho_cp, &heat_content, from_c, heat_j_per_m3, self.melting_c)
     }
+}
+
+/// Solves `integral_{from}^{T} rho_cp dT = heat` for `T` below `melting_c` with a safeguarded
+/// Newton iteration (bracketed by `[from, melting_c]`, capped at 100 iterations); `heat_content`
+/// is `rho_cp`'s antiderivative polynomial
+/// ([`crate::poly::TempPolynomial::antiderivative_polynomial`]).
+///
+/// **Source:** paper Eq 12 integrated along the flow line (adiabatic).
+///
+/// Returns [`ModelError::AboveMelting`] if the heat would take the material to or past
+/// `melting_c`, and [`ModelError::NoConvergence`] at the cap.
+pub(crate) fn adiabatic_temperature(
+    rho_cp: &crate::poly::TempPolynomial,
+    heat_content: &crate::poly::TempPolynomial,
+    from_c: f64,
+    heat_j_per_m3: f64,
+    melting_c: f64,
+) -> Result<f64, ModelError> {
+    check_finite("heat_j_per_m3", heat_j_per_m3)?;
+    if heat_j_per_m3 < 0.0 {
+        return Err(ModelError::out_of_range("heat_j_per_m3", heat_j_per_m3, "heat >= 0 J/m^3"));
+    }
+    let top = melting_c;
+    let h_from = heat_content.value(from_c);
+    let h_top = heat_content.value(top) - h_from;
+    if heat_j_per_m3 >= h_top {
+        return Err(ModelError::AboveMelting {
+            what: "adiabatic temperature".into(),
+            temperature_c: top + (heat_j_per_m3 - h_top) / rho_cp.value(top).max(1.0),
+            melting_c: top,
+        });
+    }
+    let (mut lo, mut hi) = (from_c, top);
+    let c0 = rho_cp.value(from_c);
+    let mut t = (from_c + heat_j_per_m3 / c0).clamp(lo, hi);
+    for _ in 0..100 {
+        let f = heat_content.value(t) - h_from - heat_j_per_m3;
+        if f > 0.0 {
+            hi = t;
+        } else {
+            lo = t;
+        }
+        let df = rho_cp.value(t);
+        let mut next = t - f / df;
+        if !(next > lo && next < hi) || df <= 0.0 {
+            next = 0.5 * (lo + hi);
+        }
+        if (next - t).abs() < 1e-10 * (1.0 + t.abs()) || hi - lo < 1e-10 {
+            return Ok(next);
+        }
+        t = next;
+    }
+    Err(ModelError::NoConvergence {
+        what: "adiabatic temperature (Newton)".into(),
+        iterations: 100,
+        last_change: hi - lo,
+        tolerance: 1e-10,
+    })
 }
 
 /// Tool-chip friction law used by the FE cards.

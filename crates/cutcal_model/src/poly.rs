@@ -85,6 +85,16 @@ impl TempPolynomial {
             * temperature_c
     }
 
+    /// The antiderivative as a polynomial (zero at 0 degC): coefficients `c_i / (i + 1)` shifted up
+    /// one degree, so that repeated evaluations need no division.
+    #[must_use]
+    pub fn antiderivative_polynomial(&self) -> Self {
+        let mut c = Vec::with_capacity(self.coefficients.len() + 1);
+        c.push(0.0);
+        c.extend(self.coefficients.iter().enumerate().map(|(i, a)| a / (i as f64 + 1.0)));
+        Self { coefficients: c }
+    }
+
     /// The exact integral of the polynomial from `from_c` to `to_c`.
     #[must_use]
     pub fn integral(&self, from_c: f64, to_c: f64) -> f64 {
@@ -103,6 +113,8 @@ mod tests {
         assert!((p.value(2.0) - 17.0).abs() < 1e-12);
         assert!((p.derivative(2.0) - 14.0).abs() < 1e-12);
         assert!((p.integral(1.0, 2.0) - (14.0 - 3.0)).abs() < 1e-12);
+        // The antiderivative polynomial is T + T^2 + T^3.
+        assert_eq!(p.antiderivative_polynomial().coefficients(), &[0.0, 1.0, 1.0, 1.0]);
     }
 
     #[test]

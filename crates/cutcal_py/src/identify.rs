@@ -29,6 +29,8 @@ pub struct IdentifyRequest {
     pub starts: usize,
     /// Multistart seed.
     pub seed: u64,
+    /// A local search from every start point (no MLSL filter; the CLI's `--every-start`).
+    pub every_start: bool,
     /// Constant rho*Cp of the original model, J/(cm^3 K).
     pub rho_cp_original: Option<f64>,
     /// Enhanced fixed point tolerance, K.
@@ -59,13 +61,14 @@ impl Default for IdentifyRequest {
             r: None,
             starts: 32,
             seed: 1,
+            every_start: false,
             rho_cp_original: None,
             tolerance_c: 1e-6,
             max_iterations: 50,
             bootstrap: 0,
             force_uncertainty: None,
             chip_uncertainty: None,
-            bootstrap_starts: 4,
+            bootstrap_starts: 2,
             noise_only: false,
             field_points: 201,
         }
@@ -118,6 +121,7 @@ fn requests(req: &IdentifyRequest) -> FaceResult<(DpzdRequest, BootstrapRequest)
         r: req.r,
         starts: Some(req.starts),
         seed: req.seed,
+        every_start: req.every_start,
         rho_cp_original: req.rho_cp_original,
         tolerance_c: req.tolerance_c,
         max_iterations: req.max_iterations,

@@ -53,7 +53,7 @@ impl Default for BootstrapRequest {
             bootstrap: 0,
             force_uncertainty: None,
             chip_uncertainty: None,
-            bootstrap_starts: 4,
+            bootstrap_starts: 2,
             noise_only: false,
             h_factor_range: vec![0.5, 2.0],
             r_half_width: 1.0,

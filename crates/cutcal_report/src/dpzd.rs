@@ -85,6 +85,13 @@ pub struct DpzdIdentifyReport {
     pub stopped_starts: usize,
     /// Of `stopped_starts`, those that joined the best minimum.
     pub stopped_at_best: usize,
+    /// Sample points from which no local search was started: a sample point with a lower
+    /// objective lay within the MLSL critical distance (Rinnooy Kan & Timmer 1987;
+    /// `cutcal_ident::multistart`). They never count in `starts_at_best`.
+    pub filtered_starts: usize,
+    /// That critical distance (unit box of n, C, m); absent when no filter ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub critical_distance: Option<f64>,
     /// Index of the best start.
     pub best_start: usize,
     /// Starts that stopped at the LM iteration cap (excluded from the best; if every start does,
@@ -375,6 +382,8 @@ fn identify_dpzd_at(mf: &MaterialFile, test: &CuttingTest, settings: &DpzdSettin
         starts_at_best: id.starts_at_best,
         stopped_starts: id.stopped_starts,
         stopped_at_best: id.stopped_at_best,
+        filtered_starts: id.filtered_starts,
+        critical_distance: id.critical_distance,
         best_start: id.best_start,
         unconverged_starts: id.unconverged_starts,
         seed: settings.multistart.seed,

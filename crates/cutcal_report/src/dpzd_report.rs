@@ -91,15 +91,22 @@ pub fn render_table(r: &DpzdIdentifyReport) -> String {
     }
     let _ = writeln!(
         s,
-        "  objective (Eq 15) {:.2} MPa, RMS {:.2} MPa; {}/{} starts reached the best minimum (seed {}){}",
+        "  objective (Eq 15) {:.2} MPa, RMS {:.2} MPa; {}{}/{} local searches reached the best minimum (seed {}){}",
         r.objective_mpa,
         r.rms_mpa,
+        match r.critical_distance {
+            Some(rk) if r.filtered_starts > 0 => format!(
+                "{} sample points, {} not searched (a better sample point within the MLSL critical distance {:.2}); ",
+                r.starts, r.filtered_starts, rk
+            ),
+            _ => String::new(),
+        },
         r.starts_at_best,
-        r.starts,
+        r.starts - r.filtered_starts,
         r.seed,
         if r.stopped_starts > 0 {
             format!(
-                "; {} of the starts were stopped on joining a minimum an earlier start had found ({} the best), \
+                "; {} of the searches were stopped on joining a minimum an earlier search had found ({} the best), \
                  by the multistart basin rule",
                 r.stopped_starts, r.stopped_at_best
             )

@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use cutcal_ident::multistart::SampleFilter;
 use cutcal_ident::MultistartOptions;
 use cutcal_io::material_file::{load_material, MaterialFile};
 use cutcal_io::tests_csv::{load_tests_measuring, MeasuredColumn};
@@ -32,6 +33,8 @@ pub struct DpzdRequest {
     pub starts: Option<usize>,
     /// Multistart seed.
     pub seed: u64,
+    /// Search from every start point: no MLSL sample filter (`cutcal_ident::multistart`).
+    pub every_start: bool,
     /// Constant rho*Cp of the original model, J/(cm^3 K) (default: the material's, else 3.5325).
     pub rho_cp_original: Option<f64>,
     /// Enhanced fixed point tolerance on the exit temperature, K.
@@ -50,6 +53,7 @@ impl Default for DpzdRequest {
             r: None,
             starts: None,
             seed: 1,
+            every_start: false,
             rho_cp_original: None,
             tolerance_c: 1e-6,
             max_iterations: 50,
@@ -100,7 +104,10 @@ impl DpzdRequest {
             rho_cp_original_j_per_m3_k: rho_cp * 1e6,
             tolerance_c: args.tolerance_c,
             max_iterations: args.max_iterations,
-            multistart: MultistartOptions::new(args.starts.unwrap_or(32), args.seed),
+            multistart: MultistartOptions {
+                sample_filter: if args.every_start { SampleFilter::Off } else { SampleFilter::Auto },
+                ..MultistartOptions::new(args.starts.unwrap_or(32), args.seed)
+            },
         })
     }
 }

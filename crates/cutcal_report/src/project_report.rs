@@ -98,14 +98,14 @@ pub fn render_markdown(r: &ProjectReport) -> String {
         let _ = writeln!(s, "Not run: {why}.\n");
     }
     if !r.identification.is_empty() {
-        let _ = writeln!(s, "| model | test | phi [deg] | tau_max | T_AB | T_EF | A | B | n | C | m | RMS | at bounds | starts at best |");
+        let _ = writeln!(s, "| model | test | phi [deg] | tau_max | T_AB | T_EF | A | B | n | C | m | RMS | at bounds | local searches at best (sample points) |");
         let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
         for (k, i) in &r.identification {
             let _ = writeln!(
                 s,
-                "| {k} | {} | {:.2} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.3} | {:.4} | {:.3} | {:.1} | {} | {}/{} |",
+                "| {k} | {} | {:.2} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.3} | {:.4} | {:.3} | {:.1} | {} | {}/{} ({}) |",
                 i.test, i.shear_angle_deg, i.tau_max_mpa, i.t_ab_c, i.t_ef_c, i.jc.a_mpa, i.jc.b_mpa, i.jc.n, i.jc.c, i.jc.m,
-                i.rms_mpa, i.at_bounds.join(", "), i.starts_at_best, i.starts
+                i.rms_mpa, i.at_bounds.join(", "), i.starts_at_best, i.starts - i.filtered_starts, i.starts
             );
         }
         let _ = writeln!(s);

@@ -71,6 +71,10 @@ pub struct IdentifyArgs {
     /// Multistart seed.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// Run a local search from every start point (`dpzd`): no MLSL filter of the start points
+    /// (by default a point with a better one within the critical distance is not searched).
+    #[arg(long)]
+    pub every_start: bool,
     /// Constant rho*Cp of the original model, J/(cm^3 K) (default: the material's value, else 3.5325).
     #[arg(long)]
     pub rho_cp_original: Option<f64>,
@@ -108,8 +112,8 @@ pub struct BootstrapArgs {
     /// row's `chip_sd_mm` when present, else 5 %.
     #[arg(long)]
     pub chip_uncertainty: Option<f64>,
-    /// Multistart starts per bootstrap sample.
-    #[arg(long, default_value_t = 4)]
+    /// Multistart starts per Monte-Carlo sample (the first at the nominal solution).
+    #[arg(long, default_value_t = 2)]
     pub bootstrap_starts: usize,
     /// Vary only the measurements, not the unstated choices h and r.
     #[arg(long)]
@@ -148,6 +152,7 @@ impl IdentifyArgs {
             r: self.r,
             starts: self.starts,
             seed: self.seed,
+            every_start: self.every_start,
             rho_cp_original: self.rho_cp_original,
             tolerance_c: self.tolerance_c,
             max_iterations: self.max_iterations,

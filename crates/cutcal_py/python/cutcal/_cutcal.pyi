@@ -82,7 +82,8 @@ def identify(material: Material, test: CuttingTest, model: str = "enhanced", sta
              r: Optional[float] = None,
              rho_cp_original: Optional[float] = None, tolerance_c: float = 1e-6, max_iterations: int = 50,
              bootstrap: int = 0, force_uncertainty: Optional[float] = None, chip_uncertainty: Optional[float] = None,
-             bootstrap_starts: int = 4, field_points: int = 201, noise_only: bool = False) -> IdentifyResult:
+             bootstrap_starts: int = 2, field_points: int = 201, noise_only: bool = False,
+             every_start: bool = False) -> IdentifyResult:
     """JC from one test: DPZD zone (paper Sec 3, Eqs 1-12; Sec 3.5 fixed point), Eq 15 fit."""
 def joint(material: Material, tests: List[CuttingTest], starts: int = 4, seed: int = 1,
           use_chip_thickness: bool = True, sharp: bool = False, material_class: Optional[str] = None,

@@ -32,7 +32,7 @@ fn read_tests(path: PathBuf) -> PyResult<Vec<PyCuttingTest>> {
 #[pyfunction]
 #[pyo3(signature = (material, test, model = "enhanced", starts = 32, seed = 1, preset = "converged", h_mm = None, points = None, r = None,
     rho_cp_original = None, tolerance_c = 1e-6, max_iterations = 50, bootstrap = 0, force_uncertainty = None,
-    chip_uncertainty = None, bootstrap_starts = 4, field_points = 201, noise_only = false))]
+    chip_uncertainty = None, bootstrap_starts = 2, field_points = 201, noise_only = false, every_start = false))]
 #[allow(clippy::too_many_arguments)] // the CLI's options, one keyword each
 fn identify(
     py: Python<'_>,
@@ -54,6 +54,7 @@ fn identify(
     bootstrap_starts: usize,
     field_points: usize,
     noise_only: bool,
+    every_start: bool,
 ) -> PyResult<PyIdentifyResult> {
     let req = IdentifyRequest {
         model: model.to_string(),
@@ -63,6 +64,7 @@ fn identify(
         r,
         starts,
         seed,
+        every_start,
         rho_cp_original,
         tolerance_c,
         max_iterations,
