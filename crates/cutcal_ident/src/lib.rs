@@ -22,6 +22,7 @@
 pub mod bootstrap;
 pub mod dpzd_fit;
 pub mod error;
+pub mod fit_stats;
 pub mod identifiability;
 pub mod joint;
 pub mod literature;
@@ -29,6 +30,7 @@ pub mod lm;
 pub mod monte_carlo;
 pub mod multistart;
 pub mod quadrature;
+pub mod start_filter;
 pub mod stats;
 pub mod varpro;
 pub mod zone_thickness;

@@ -11,22 +11,23 @@
 //! Stopped starts are reported ([`MultistartReport::stopped_starts`]) and never become the best;
 //! the first start always runs to convergence.
 //!
-//! **Sample filter (optional, [`SampleFilter`]).** Multi-level single linkage (Rinnooy Kan and
-//! Timmer, Math. Programming 39 (1987) 57-78, Sec 3): the objective is evaluated at every sample
-//! point first, and a local search is started from a sample point only if no sample point with a
-//! lower objective lies within the critical distance
-//! `r_k = pi^{-1/2} (Gamma(1 + d/2) sigma ln k / k)^{1/d}` (their Eq 4, unit box of the `d` free
-//! parameters, `k` sample points; `sigma` = [`MLSL_SIGMA`] in the DPZD identification, chosen
-//! by measurement). Start 0 (the centre, or the caller's warm start) is always searched. Sample points
-//! not searched are reported ([`MultistartReport::filtered_starts`]); they never count as having
-//! reached a minimum.
+//! **Sample filter (optional, [`SampleFilter`], [`crate::start_filter`]).** Multi-level single
+//! linkage: a local search starts only from sample points with no better sample point within the
+//! critical distance. Start 0 (the centre, or the caller's warm start) is always searched. Sample
+//! points not searched are reported ([`MultistartReport::filtered_starts`]); they never count as
+//! having reached a minimum.
+//!
+//! The fit statistics of a solution are in [`crate::fit_stats`].
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use crate::error::IdentError;
+pub use crate::fit_stats::{fit_statistics, FitStatistics};
 use crate::lm::{minimise, minimise_until, Bounds, LmOptions, LmResult, Problem, Termination};
+use crate::start_filter::{distance, mlsl_filter};
+pub use crate::start_filter::{mlsl_critical_distance, SampleFilter, MLSL_SIGMA};
 
 /// Multistart settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,72 +60,6 @@ impl MultistartOptions {
             sample_filter: SampleFilter::Auto,
         }
     }
-}
-
-/// The sample filter of the multistart (module docs).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SampleFilter {
-    /// The caller's default: off in the generic [`multistart`], MLSL with `sigma` =
-    /// [`MLSL_SIGMA`] in the DPZD identification ([`crate::dpzd_fit::identify`]).
-    Auto,
-    /// A local search from every sample point.
-    Off,
-    /// MLSL with this `sigma` (> 0) in the critical distance.
-    Mlsl {
-        /// `sigma` of Rinnooy Kan and Timmer's critical distance (their Eq 4).
-        sigma: f64,
-    },
-}
-
-impl SampleFilter {
-    /// The `sigma` this filter applies, given the caller's default for [`SampleFilter::Auto`].
-    #[must_use]
-    pub fn sigma(self, auto: Option<f64>) -> Option<f64> {
-        match self {
-            Self::Auto => auto,
-            Self::Off => None,
-            Self::Mlsl { sigma } => Some(sigma),
-        }
-    }
-}
-
-/// `sigma` of the MLSL critical distance in the DPZD identification: 1, chosen by measurement.
-///
-/// Rinnooy Kan and Timmer (1987) prove that every local minimum is found with probability 1 as
-/// the sample grows for any `sigma > 0`, that the chance of a new search at a stage tends to 0
-/// for `sigma > 2`, and that the expected number of searches is finite for `sigma > 4`. With the
-/// few tens of points a user runs, the asymptotics do not decide. Measured on the projected
-/// problem of random JC truths (the generator of `tests/varpro.rs`; a miss is a best SSR above the
-/// exhaustive multistart's): `sigma = 4` missed in 21/400 truths at 16 starts and 2/400 at 32;
-/// `sigma = 2` in 23/1500 at 16 and 4/1500 at 32; `sigma = 1.5` in 1/1500 at 50 and in one
-/// `CUTCAL_FUZZ_CASES=2000` proptest case at 16 (SSR 2e-3 relative, a flat n-m valley);
-/// `sigma = 1` (with the basin radius [`DPZD_BASIN_RADIUS`]) in none of 1500 at each of 16, 32
-/// and 50 starts nor of 3000 proptest cases, searching 8.1, 11.0 and 12.6 of the points on
-/// average (docs/identification-speed.md).
-pub const MLSL_SIGMA: f64 = 1.0;
-
-/// MLSL's critical distance for `k` sample points in the unit box of `d` free parameters
-/// (`d >= 1`, `k >= 2`; otherwise 0, which filters nothing).
-///
-/// **Source:** Rinnooy Kan and Timmer (1987), Eq 4 (`m(S) = 1`).
-#[must_use]
-pub fn mlsl_critical_distance(d: usize, k: usize, sigma: f64) -> f64 {
-    if d == 0 || k < 2 || !(sigma > 0.0) {
-        return 0.0;
-    }
-    // Gamma(1 + d/2) by the recursion Gamma(1 + x) = x Gamma(x), down to Gamma(1) or Gamma(1/2).
-    let mut x = d as f64 / 2.0;
-    let mut gamma = 1.0;
-    while x > 0.75 {
-        gamma *= x;
-        x -= 1.0;
-    }
-    if x > 0.25 {
-        gamma *= 0.5 * std::f64::consts::PI.sqrt();
-    }
-    let kf = k as f64;
-    (gamma * sigma * kf.ln() / kf).powf(1.0 / d as f64) / std::f64::consts::PI.sqrt()
 }
 
 /// The basin rule of the multistart (module docs).
@@ -370,111 +305,6 @@ pub fn multistart_from<P: Problem + ?Sized>(
         unconverged_starts,
         filtered_starts,
         critical_distance,
-    })
-}
-
-/// MLSL's sample filter (module docs): `true` for every sample point (but start 0) with a sample
-/// point of lower objective within `rk` (unit box; ties broken by index). A point whose objective
-/// cannot be evaluated is never filtered (its local search reports the failure).
-///
-/// **Source:** Rinnooy Kan and Timmer (1987), Sec 3.
-fn mlsl_filter<P: Problem + ?Sized>(problem: &P, bounds: &Bounds, units: &[DVector<f64>], rk: f64) -> Vec<bool> {
-    let mut r = DVector::zeros(problem.residual_count());
-    let f: Vec<Option<f64>> = units
-        .iter()
-        .map(|z| {
-            problem.residuals(&bounds.from_unit(z), &mut r).ok()?;
-            let ssr = r.norm_squared();
-            ssr.is_finite().then_some(ssr)
-        })
-        .collect();
-    let lower = |j: usize, i: usize| match (f[j], f[i]) {
-        (Some(fj), Some(fi)) => fj < fi || (fj == fi && j < i),
-        _ => false,
-    };
-    (0..units.len())
-        .map(|i| {
-            i > 0
-                && f[i].is_some()
-                && (0..units.len()).any(|j| j != i && lower(j, i) && distance(&units[j], &units[i]) <= rk)
-        })
-        .collect()
-}
-
-/// Euclidean distance of two points (no allocation).
-fn distance(a: &DVector<f64>, b: &DVector<f64>) -> f64 {
-    a.iter().zip(b.iter()).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
-}
-
-/// Quality of a least-squares fit and what the data cannot pin down.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct FitStatistics {
-    /// Sum of squared residuals.
-    pub ssr: f64,
-    /// Root mean square residual.
-    pub rms: f64,
-    /// Names of parameters at a bound (or fixed).
-    pub at_bounds: Vec<String>,
-    /// Names of the free parameters, the order of the matrices below.
-    pub free: Vec<String>,
-    /// Covariance of the free parameters, `s^2 (J^T J)^-1`, `s^2 = SSR/(m - p)`; `None` if singular
-    /// or if there are no degrees of freedom.
-    pub covariance: Option<Vec<Vec<f64>>>,
-    /// Correlation matrix of the free parameters.
-    pub correlation: Option<Vec<Vec<f64>>>,
-    /// Standard errors of the free parameters.
-    pub std_errors: Option<Vec<f64>>,
-    /// Condition number of `J^T J` on the free set (large: poorly determined combinations).
-    pub condition_number: Option<f64>,
-}
-
-/// Fit statistics at `params` (the Jacobian is evaluated there).
-pub fn fit_statistics<P: Problem + ?Sized>(
-    problem: &P,
-    bounds: &Bounds,
-    params: &DVector<f64>,
-    residuals: &DVector<f64>,
-) -> Result<FitStatistics, IdentError> {
-    let m = problem.residual_count();
-    let n = problem.parameter_count();
-    let ssr = residuals.norm_squared();
-    let at = bounds.at_bounds(params, 1e-6);
-    let free: Vec<usize> = (0..n).filter(|i| !at.contains(i)).collect();
-    let mut jac = DMatrix::zeros(m, n);
-    problem.jacobian(params, bounds, &mut jac)?;
-    let jf = DMatrix::from_fn(m, free.len(), |i, k| jac[(i, free[k])]);
-    let jtj = jf.transpose() * &jf;
-    let dof = m as f64 - free.len() as f64;
-    let (mut covariance, mut correlation, mut std_errors, mut condition_number) = (None, None, None, None);
-    if !free.is_empty() {
-        let sv = jtj.clone().symmetric_eigenvalues();
-        let (mx, mn) = sv.iter().fold((0.0f64, f64::INFINITY), |(a, b), v| (a.max(*v), b.min(*v)));
-        if mn > 0.0 {
-            condition_number = Some(mx / mn);
-        }
-        if dof > 0.0 {
-            if let Some(inv) = jtj.try_inverse() {
-                let s2 = ssr / dof;
-                let cov = inv * s2;
-                let se: Vec<f64> = (0..free.len()).map(|i| cov[(i, i)].max(0.0).sqrt()).collect();
-                let corr = (0..free.len())
-                    .map(|i| (0..free.len()).map(|j| cov[(i, j)] / (se[i] * se[j]).max(f64::MIN_POSITIVE)).collect())
-                    .collect();
-                covariance = Some((0..free.len()).map(|i| (0..free.len()).map(|j| cov[(i, j)]).collect()).collect());
-                correlation = Some(corr);
-                std_errors = Some(se);
-            }
-        }
-    }
-    Ok(FitStatistics {
-        ssr,
-        rms: (ssr / m as f64).sqrt(),
-        at_bounds: at.iter().map(|&i| bounds.names[i].clone()).collect(),
-        free: free.iter().map(|&i| bounds.names[i].clone()).collect(),
-        covariance,
-        correlation,
-        std_errors,
-        condition_number,
     })
 }
 
