@@ -110,12 +110,15 @@ pub fn render_markdown(r: &ProjectReport) -> String {
         }
         let _ = writeln!(s);
         for (k, i) in &r.identification {
-            if let (Some(se), Some(corr)) = (&i.std_errors, &i.correlation) {
+            if let Some(corr) = &i.correlation {
+                // No standard errors (issue 11): s^2 (J^T J)^-1 of deterministic model residuals
+                // at arbitrary points has no statistical meaning; the spread is the Monte-Carlo's.
                 let _ = writeln!(
                     s,
-                    "{k}: standard errors of the free parameters {:?} = {:?}; condition number {}.",
+                    "{k}: free parameters {:?}; condition number {} (no standard errors: s^2 (J^T J)^-1 of \
+                     deterministic model residuals has no statistical meaning; `cutcal identify --bootstrap N` \
+                     gives a Monte-Carlo spread).",
                     i.free,
-                    se.iter().map(|v| (v * 1e4).round() / 1e4).collect::<Vec<_>>(),
                     condition_text(i.condition_number)
                 );
                 let strong: Vec<String> = (0..i.free.len())
