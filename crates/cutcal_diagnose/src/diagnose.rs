@@ -205,13 +205,25 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                     cands[i].loco_after = Some(loco_of(&folds, s + 1));
                 }
                 // Nested pipeline: inside each fold, re-run the significance decision on the fold's
-                // fits and predict the held-out condition with the fold's choice.
+                // fits and predict the held-out condition with the fold's choice. The fold chooses
+                // among the candidates that pass their own held-out check on the whole data (as
+                // the decision below does): a candidate that extrapolates badly cannot be chosen
+                // on the data, so it must not sink the pipeline's check either (a stated, small
+                // optimism, like the candidate set taken from the full-data screen).
+                let before = current_loco.as_ref().map(|l| l.rss);
+                let own_ok: Vec<bool> = sig
+                    .iter()
+                    .map(|&i| matches!((&cands[i].loco_after, before), (Some(a), Some(b)) if a.rss < b))
+                    .collect();
                 let mut resid = Vec::new();
                 for fold in &folds {
                     let nb = fold[0].rss;
                     let n_tr = n - fold[0].resid.len();
                     let mut best: Option<(f64, usize)> = None;
                     for (s, &i) in sig.iter().enumerate() {
+                        if !own_ok[s] {
+                            continue;
+                        }
                         let f = &fold[s + 1];
                         let d = f.k - fold[0].k;
                         let p = f_test(nb, f.rss, d, n_tr, f.k, one_sided(cands[i].id));

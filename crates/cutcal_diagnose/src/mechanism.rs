@@ -230,19 +230,30 @@ pub struct Context {
     pub friction_v_ref_m_min: f64,
     /// Recorded edge radius per test over the mean recorded radius, when every test records one.
     pub edge_shape: Option<Vec<f64>>,
+    /// Whether the run order behind `wear_state` is the row order of the recordings (no `order`
+    /// and no `flank_wear_mm` column): the report says so.
+    pub order_from_rows: bool,
 }
 
 impl Context {
-    /// The context of a set of tests (wear state from VB, else from the test order).
+    /// The context of a set of tests (wear state from VB, else from the test order, else from the
+    /// row order: test logs are kept in the order the tests were run, and the report says when
+    /// this assumption was made).
     #[must_use]
     pub fn of(tests: &[CuttingTest]) -> Self {
         let vb: Vec<Option<f64>> = tests.iter().map(|t| t.flank_wear_m).collect();
+        let mut order_from_rows = false;
         let wear_state = if vb.iter().all(Option::is_some) {
             let max = vb.iter().flatten().fold(0.0f64, |a, b| a.max(*b));
             (max > 0.0).then(|| vb.iter().flatten().map(|v| v / max).collect())
         } else if tests.iter().all(|t| t.order.is_some()) {
             let max = tests.iter().filter_map(|t| t.order).max().unwrap_or(0) as f64;
             (max > 0.0).then(|| tests.iter().filter_map(|t| t.order).map(|o| o as f64 / max).collect())
+        } else if tests.len() >= 2 && tests.iter().all(|t| t.order.is_none()) {
+            // Row i of n ran i-th: state (i + 1) / n, as an `order` column 1..n would give.
+            order_from_rows = true;
+            let n = tests.len() as f64;
+            Some((0..tests.len()).map(|i| (i + 1) as f64 / n).collect())
         } else {
             None
         };
@@ -255,7 +266,7 @@ impl Context {
         } else {
             None
         };
-        Self { wear_state, bue_onset_m_min: 0.0, friction_v_ref_m_min, edge_shape }
+        Self { wear_state, bue_onset_m_min: 0.0, friction_v_ref_m_min, edge_shape, order_from_rows }
     }
 
     /// The context restricted to the tests at `indices` (for leave-one-condition-out folds).
@@ -266,6 +277,7 @@ impl Context {
             bue_onset_m_min: self.bue_onset_m_min,
             friction_v_ref_m_min: self.friction_v_ref_m_min,
             edge_shape: self.edge_shape.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
+            order_from_rows: self.order_from_rows,
         }
     }
 }
