@@ -25,7 +25,7 @@ pub enum MechanismId {
     FlankWear,
     /// M4 tool-chip friction below full sticking, falling with cutting speed (M5).
     ToolChipFriction,
-    /// M7 thermal softening / thermomechanical coupling stronger than the model's.
+    /// M7 thermal softening / thermomechanical coupling stronger or weaker than the model's.
     ThermalSoftening,
     /// M6 heat partition into the work different from Boothroyd's.
     HeatPartition,
@@ -160,9 +160,11 @@ pub fn info(id: MechanismId) -> MechanismInfo {
         },
         M::ThermalSoftening => MechanismInfo {
             id,
-            title: "thermomechanical softening stronger than modelled",
+            title: "thermomechanical softening different from the model's (stronger or weaker)",
             source: "Ertuerk, Malakizadi & Larsson 2020; design note M7",
-            params: vec![p("k_T", "-", 0.0, 1.5, 0.0, 0.2)],
+            // k_T < 0: softening weaker than the JC law's (a larger thermal exponent m, e.g. a
+            // published m fitted at other temperatures); k_T > 0: stronger. Two-sided.
+            params: vec![p("k_T", "-", -0.5, 1.5, 0.0, 0.2)],
             hook: Some(Hook::ExtraSoftening),
             signature: "forces over-predicted increasingly with speed and feed, Ft most, chip thinner",
             covariates: "a speed range of about a decade",
