@@ -285,14 +285,15 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         });
         if let Some((b, a, da)) = &artefact {
             cands[*b].reason = format!(
-                "{} explains the mismatch as well (its dAICc {:+.1} against {:+.1}; fitted factor {:.3}): no claim",
+                "{} explains the mismatch at least as well (its dAICc {:+.1} against {:+.1}; fitted factor {:.3}): no claim",
                 a.artefact.describe(),
                 da,
                 cands[*b].daicc,
                 a.g.exp()
             );
             instrument_notes.push(format!(
-                "{} explains the mismatch about as well as {} (dAICc {:+.1} against {:+.1}), so no physics is claimed; \
+                "Instrument check: {} explains the mismatch at least as well as {} (dAICc {:+.1} against {:+.1}), so no \
+                 physics is claimed; \
                  check the dynamometer calibration{}.",
                 a.artefact.describe(),
                 cands[*b].id.as_str(),

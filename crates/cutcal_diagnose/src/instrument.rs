@@ -150,8 +150,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn artefacts_are_described_for_the_report() {
-        assert!(Artefact::Gain.describe().contains("gain"));
-        assert!(Artefact::Drift.describe().contains("run order"));
+    fn aicc_counts_the_artefact_parameter() {
+        // AICc = n ln(RSS/n) + 2k + 2k(k+1)/(n-k-1) (Hurvich & Tsai 1989): for n = 20, RSS = 20,
+        // k = 3 the first term is 0 and the rest 6 + 24/16 = 7.5.
+        let a = ArtefactFit { artefact: Artefact::Gain, g: 0.1, rss: 20.0, k: 3 };
+        assert!((a.aicc(20) - stats::aicc(20.0, 20, 3)).abs() < 1e-12);
+        assert!((a.aicc(20) - 7.5).abs() < 1e-9, "{}", a.aicc(20));
     }
 }
