@@ -66,9 +66,10 @@ impl ArtefactFit {
     }
 }
 
-/// Bound of the artefact parameter: a gain or drift of exp(0.4) = 1.5 is far beyond any
-/// dynamometer error, so the bound never binds on a real one.
-const G_BOUND: f64 = 0.4;
+/// Bound of the artefact parameter, ln(1.2): a force channel whose gain is off (or drifts) by more
+/// than 20 % fails any static check with dead weights (ISO 376 class-2 force calibration is within
+/// 0.5 %), so a larger factor is not an instrument explanation but a physical mismatch.
+const G_BOUND: f64 = 0.182_321_556_793_954_6;
 
 struct ArtefactProblem<'a> {
     pr: &'a Problem<'a>,
