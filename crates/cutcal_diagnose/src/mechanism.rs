@@ -240,7 +240,9 @@ pub struct Context {
 impl Context {
     /// The context of a set of tests (wear state from VB, else from the test order, else from the
     /// row order: test logs are kept in the order the tests were run, and the report says when
-    /// this assumption was made).
+    /// this assumption was made). Rows sorted by uncut chip thickness or by speed are a sorted
+    /// listing, not a run log, and a trend over them could not be told from that variable's own
+    /// effect: then no run order is assumed.
     #[must_use]
     pub fn of(tests: &[CuttingTest]) -> Self {
         let vb: Vec<Option<f64>> = tests.iter().map(|t| t.flank_wear_m).collect();
@@ -251,7 +253,11 @@ impl Context {
         } else if tests.iter().all(|t| t.order.is_some()) {
             let max = tests.iter().filter_map(|t| t.order).max().unwrap_or(0) as f64;
             (max > 0.0).then(|| tests.iter().filter_map(|t| t.order).map(|o| o as f64 / max).collect())
-        } else if tests.len() >= 2 && tests.iter().all(|t| t.order.is_none()) {
+        } else if tests.len() >= 2
+            && tests.iter().all(|t| t.order.is_none())
+            && !sorted_by(tests, |t| t.uncut_chip_thickness_m)
+            && !sorted_by(tests, |t| t.speed_m_per_s)
+        {
             // Row i of n ran i-th: state (i + 1) / n, as an `order` column 1..n would give.
             order_from_rows = true;
             let n = tests.len() as f64;
@@ -282,6 +288,16 @@ impl Context {
             order_from_rows: self.order_from_rows,
         }
     }
+}
+
+/// Whether the rows are monotone (non-decreasing or non-increasing) in `f` with at least two
+/// distinct values.
+fn sorted_by(tests: &[CuttingTest], f: impl Fn(&CuttingTest) -> f64) -> bool {
+    let v: Vec<f64> = tests.iter().map(f).collect();
+    let up = v.windows(2).all(|w| w[1] >= w[0]);
+    let down = v.windows(2).all(|w| w[1] <= w[0]);
+    let varies = v.iter().any(|x| (x - v[0]).abs() > 1e-9 * v[0].abs());
+    varies && (up || down)
 }
 
 /// Smooth low-speed indicator of the built-up edge: 1 well below the onset speed, 0 well above.
@@ -459,6 +475,21 @@ mod tests {
         // Order 1 and 4 of max 4: VB 0.05 and 0.2 mm for vb = 0.2 mm.
         set_hooks(MechanismId::FlankWear, &[0.2], &tests, &ctx, &sim, &mut hooks);
         assert!((hooks[0].wear_land_m - 0.05e-3).abs() < 1e-12 && (hooks[1].wear_land_m - 0.2e-3).abs() < 1e-12);
+    }
+
+    #[test]
+    fn row_order_is_the_run_order_only_for_an_unsorted_log() {
+        // No `order` and no VB column: rows unsorted in h and V give the states (i + 1)/n; rows
+        // sorted by feed give no run order (a wear trend over them is the feed's own effect).
+        let t = |id: &str, v: f64, h: f64| CuttingTest::new(id, v / 60.0, h * 1e-3, 1e-3, 0.0).unwrap();
+        let log = [t("a", 100.0, 0.2), t("b", 200.0, 0.1), t("c", 100.0, 0.1), t("d", 200.0, 0.2)];
+        let ctx = Context::of(&log);
+        assert_eq!(ctx.wear_state, Some(vec![0.25, 0.5, 0.75, 1.0]));
+        assert!(ctx.order_from_rows);
+        let sorted = [t("a", 100.0, 0.05), t("b", 200.0, 0.1), t("c", 100.0, 0.2), t("d", 200.0, 0.3)];
+        let ctx = Context::of(&sorted);
+        assert_eq!(ctx.wear_state, None);
+        assert!(!ctx.order_from_rows);
     }
 
     #[test]
