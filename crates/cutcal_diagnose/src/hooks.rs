@@ -11,7 +11,8 @@ pub struct Hooks {
     pub friction_factor: f64,
     /// Scale on the Boothroyd heat partition beta (1 = Oxley; M6).
     pub heat_partition_scale: f64,
-    /// Extra thermomechanical coupling k: the flow stress sees `T_w + (1 + k)(T - T_w)` (0 = off; M7).
+    /// Extra thermomechanical coupling k: the flow stress sees `T_w + (1 + k)(T - T_w)` (0 = off;
+    /// negative = weaker softening than the JC law's; M7).
     pub extra_softening: f64,
     /// Rake-angle shift, rad (built-up edge: positive = larger effective rake; M9).
     pub rake_shift_rad: f64,

@@ -9,6 +9,7 @@ pub mod classes;
 pub mod error;
 pub mod fit;
 pub mod hooks;
+mod instrument;
 pub mod noise;
 pub mod null;
 pub mod shadow;

@@ -25,7 +25,7 @@ pub enum MechanismId {
     FlankWear,
     /// M4 tool-chip friction below full sticking, falling with cutting speed (M5).
     ToolChipFriction,
-    /// M7 thermal softening / thermomechanical coupling stronger than the model's.
+    /// M7 thermal softening / thermomechanical coupling stronger or weaker than the model's.
     ThermalSoftening,
     /// M6 heat partition into the work different from Boothroyd's.
     HeatPartition,
@@ -160,9 +160,11 @@ pub fn info(id: MechanismId) -> MechanismInfo {
         },
         M::ThermalSoftening => MechanismInfo {
             id,
-            title: "thermomechanical softening stronger than modelled",
+            title: "thermomechanical softening different from the model's (stronger or weaker)",
             source: "Ertuerk, Malakizadi & Larsson 2020; design note M7",
-            params: vec![p("k_T", "-", 0.0, 1.5, 0.0, 0.2)],
+            // k_T < 0: softening weaker than the JC law's (a larger thermal exponent m, e.g. a
+            // published m fitted at other temperatures); k_T > 0: stronger. Two-sided.
+            params: vec![p("k_T", "-", -0.5, 1.5, 0.0, 0.2)],
             hook: Some(Hook::ExtraSoftening),
             signature: "forces over-predicted increasingly with speed and feed, Ft most, chip thinner",
             covariates: "a speed range of about a decade",
@@ -230,19 +232,36 @@ pub struct Context {
     pub friction_v_ref_m_min: f64,
     /// Recorded edge radius per test over the mean recorded radius, when every test records one.
     pub edge_shape: Option<Vec<f64>>,
+    /// Whether the run order behind `wear_state` is the row order of the recordings (no `order`
+    /// and no `flank_wear_mm` column): the report says so.
+    pub order_from_rows: bool,
 }
 
 impl Context {
-    /// The context of a set of tests (wear state from VB, else from the test order).
+    /// The context of a set of tests (wear state from VB, else from the test order, else from the
+    /// row order: test logs are kept in the order the tests were run, and the report says when
+    /// this assumption was made). Rows sorted by uncut chip thickness or by speed are a sorted
+    /// listing, not a run log, and a trend over them could not be told from that variable's own
+    /// effect: then no run order is assumed.
     #[must_use]
     pub fn of(tests: &[CuttingTest]) -> Self {
         let vb: Vec<Option<f64>> = tests.iter().map(|t| t.flank_wear_m).collect();
+        let mut order_from_rows = false;
         let wear_state = if vb.iter().all(Option::is_some) {
             let max = vb.iter().flatten().fold(0.0f64, |a, b| a.max(*b));
             (max > 0.0).then(|| vb.iter().flatten().map(|v| v / max).collect())
         } else if tests.iter().all(|t| t.order.is_some()) {
             let max = tests.iter().filter_map(|t| t.order).max().unwrap_or(0) as f64;
             (max > 0.0).then(|| tests.iter().filter_map(|t| t.order).map(|o| o as f64 / max).collect())
+        } else if tests.len() >= 2
+            && tests.iter().all(|t| t.order.is_none())
+            && !sorted_by(tests, |t| t.uncut_chip_thickness_m)
+            && !sorted_by(tests, |t| t.speed_m_per_s)
+        {
+            // Row i of n ran i-th: state (i + 1) / n, as an `order` column 1..n would give.
+            order_from_rows = true;
+            let n = tests.len() as f64;
+            Some((0..tests.len()).map(|i| (i + 1) as f64 / n).collect())
         } else {
             None
         };
@@ -255,7 +274,7 @@ impl Context {
         } else {
             None
         };
-        Self { wear_state, bue_onset_m_min: 0.0, friction_v_ref_m_min, edge_shape }
+        Self { wear_state, bue_onset_m_min: 0.0, friction_v_ref_m_min, edge_shape, order_from_rows }
     }
 
     /// The context restricted to the tests at `indices` (for leave-one-condition-out folds).
@@ -266,8 +285,19 @@ impl Context {
             bue_onset_m_min: self.bue_onset_m_min,
             friction_v_ref_m_min: self.friction_v_ref_m_min,
             edge_shape: self.edge_shape.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
+            order_from_rows: self.order_from_rows,
         }
     }
+}
+
+/// Whether the rows are monotone (non-decreasing or non-increasing) in `f` with at least two
+/// distinct values.
+fn sorted_by(tests: &[CuttingTest], f: impl Fn(&CuttingTest) -> f64) -> bool {
+    let v: Vec<f64> = tests.iter().map(f).collect();
+    let up = v.windows(2).all(|w| w[1] >= w[0]);
+    let down = v.windows(2).all(|w| w[1] <= w[0]);
+    let varies = v.iter().any(|x| (x - v[0]).abs() > 1e-9 * v[0].abs());
+    varies && (up || down)
 }
 
 /// Smooth low-speed indicator of the built-up edge: 1 well below the onset speed, 0 well above.
@@ -445,6 +475,21 @@ mod tests {
         // Order 1 and 4 of max 4: VB 0.05 and 0.2 mm for vb = 0.2 mm.
         set_hooks(MechanismId::FlankWear, &[0.2], &tests, &ctx, &sim, &mut hooks);
         assert!((hooks[0].wear_land_m - 0.05e-3).abs() < 1e-12 && (hooks[1].wear_land_m - 0.2e-3).abs() < 1e-12);
+    }
+
+    #[test]
+    fn row_order_is_the_run_order_only_for_an_unsorted_log() {
+        // No `order` and no VB column: rows unsorted in h and V give the states (i + 1)/n; rows
+        // sorted by feed give no run order (a wear trend over them is the feed's own effect).
+        let t = |id: &str, v: f64, h: f64| CuttingTest::new(id, v / 60.0, h * 1e-3, 1e-3, 0.0).unwrap();
+        let log = [t("a", 100.0, 0.2), t("b", 200.0, 0.1), t("c", 100.0, 0.1), t("d", 200.0, 0.2)];
+        let ctx = Context::of(&log);
+        assert_eq!(ctx.wear_state, Some(vec![0.25, 0.5, 0.75, 1.0]));
+        assert!(ctx.order_from_rows);
+        let sorted = [t("a", 100.0, 0.05), t("b", 200.0, 0.1), t("c", 100.0, 0.2), t("d", 200.0, 0.3)];
+        let ctx = Context::of(&sorted);
+        assert_eq!(ctx.wear_state, None);
+        assert!(!ctx.order_from_rows);
     }
 
     #[test]

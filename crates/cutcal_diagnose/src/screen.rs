@@ -12,10 +12,14 @@ use crate::problem::{Candidate, Problem};
 use crate::report::*;
 use crate::stats;
 
-/// Whether a mechanism's single parameter is one-sided (its off value sits on a bound).
+/// Whether a mechanism's single fitted parameter is one-sided (its off value sits on a bound, so
+/// the likelihood-ratio statistic is a 50:50 mixture of 0 and chi-square(1), Self & Liang 1987). A
+/// parameter free on both sides of its off value (cross-talk, softening) is two-sided.
 pub(crate) fn one_sided(id: MechanismId) -> bool {
     let inf = info(id);
-    inf.params.len() == 1 || id == MechanismId::BuiltUpEdge
+    let p = inf.params[0];
+    let on_bound = p.off <= p.lower || p.off >= p.upper;
+    (inf.params.len() == 1 || id == MechanismId::BuiltUpEdge) && on_bound
 }
 
 /// F-test p-value of a nested least-squares comparison (halved for a one-sided single parameter).
