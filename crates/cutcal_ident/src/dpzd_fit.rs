@@ -425,18 +425,7 @@ pub(crate) fn identify_warm_with(
     let stats = if statistics {
         fit_statistics(problem, &b, &report.best.params, &report.best.residuals)?
     } else {
-        let ssr = report.best.residuals.norm_squared();
-        let at = b.at_bounds(&report.best.params, 1e-6);
-        FitStatistics {
-            ssr,
-            rms: (ssr / report.best.residuals.len().max(1) as f64).sqrt(),
-            at_bounds: at.iter().map(|&i| b.names[i].clone()).collect(),
-            free: (0..b.len()).filter(|i| !at.contains(i)).map(|i| b.names[i].clone()).collect(),
-            covariance: None,
-            correlation: None,
-            std_errors: None,
-            condition_number: None,
-        }
+        FitStatistics::without_covariance(&b, &report.best.params, &report.best.residuals)
     };
     let jc = problem.constants.params(&report.best.params);
     Ok(JcIdentification {

@@ -29,6 +29,26 @@ pub struct FitStatistics {
     pub condition_number: Option<f64>,
 }
 
+impl FitStatistics {
+    /// SSR, RMS and the parameters at a bound, without the covariance and its relatives (`None`):
+    /// for fits whose statistics are not reported (Monte-Carlo samples) or cannot be formed.
+    #[must_use]
+    pub fn without_covariance(bounds: &Bounds, params: &DVector<f64>, residuals: &DVector<f64>) -> Self {
+        let ssr = residuals.norm_squared();
+        let at = bounds.at_bounds(params, 1e-6);
+        Self {
+            ssr,
+            rms: (ssr / residuals.len().max(1) as f64).sqrt(),
+            at_bounds: at.iter().map(|&i| bounds.names[i].clone()).collect(),
+            free: (0..bounds.len()).filter(|i| !at.contains(i)).map(|i| bounds.names[i].clone()).collect(),
+            covariance: None,
+            correlation: None,
+            std_errors: None,
+            condition_number: None,
+        }
+    }
+}
+
 /// Fit statistics at `params` (the Jacobian is evaluated there).
 pub fn fit_statistics<P: Problem + ?Sized>(
     problem: &P,

@@ -363,20 +363,8 @@ pub fn identify_oxley(
     let predictions = problem.predictions(&report.best.params)?;
     // The covariance needs a Jacobian at the solution; if a perturbed forward solve fails there,
     // report the fit without covariance rather than failing the identification.
-    let stats = fit_statistics(&problem, &b, &report.best.params, &report.best.residuals).unwrap_or_else(|_| {
-        let ssr = report.best.residuals.norm_squared();
-        let at = b.at_bounds(&report.best.params, 1e-6);
-        FitStatistics {
-            ssr,
-            rms: (ssr / report.best.residuals.len() as f64).sqrt(),
-            at_bounds: at.iter().map(|&i| b.names[i].clone()).collect(),
-            free: (0..b.len()).filter(|i| !at.contains(i)).map(|i| b.names[i].clone()).collect(),
-            covariance: None,
-            correlation: None,
-            std_errors: None,
-            condition_number: None,
-        }
-    });
+    let stats = fit_statistics(&problem, &b, &report.best.params, &report.best.residuals)
+        .unwrap_or_else(|_| FitStatistics::without_covariance(&b, &report.best.params, &report.best.residuals));
     let identifiability = identifiability(&problem, &b, &report.best.params);
     let p = &report.best.params;
     let outside_literature = literature.as_ref().map_or_else(Vec::new, |l| l.outside(p[2], p[3], p[4]));

@@ -96,12 +96,7 @@ impl<'a> VarproProblem<'a> {
             let mut s = [0.0; 5];
             for ((c, en), tm) in self.cached.iter().zip(&e.eps_n).zip(&e.theta_m) {
                 let (u, v) = Self::bases(c, *en, *tm, cc);
-                let y = c.sqrt_weight * c.target_mpa;
-                s[0] += u * u;
-                s[1] += u * v;
-                s[2] += v * v;
-                s[3] += u * y;
-                s[4] += v * y;
+                accumulate(&mut s, u, v, c.sqrt_weight * c.target_mpa);
                 e.basis.push([u, v]);
             }
             e.linear = Some(solve_box(s, self.a_box, self.b_box));
@@ -139,12 +134,7 @@ impl<'a> VarproProblem<'a> {
         let mut s = [0.0; 5];
         for c in self.cached {
             let (u, v) = Self::bases(c, power(c.ln_strain, n, n == 0.0), power(c.ln_theta, m, false), cc);
-            let y = c.sqrt_weight * c.target_mpa;
-            s[0] += u * u;
-            s[1] += u * v;
-            s[2] += v * v;
-            s[3] += u * y;
-            s[4] += v * y;
+            accumulate(&mut s, u, v, c.sqrt_weight * c.target_mpa);
         }
         solve_box(s, self.a_box, self.b_box)
     }
@@ -166,6 +156,16 @@ fn power(ln_x: Option<f64>, p: f64, zero_power_is_one: bool) -> f64 {
         None if zero_power_is_one => 1.0,
         None => 0.0,
     }
+}
+
+/// Adds one point's terms to the sums `[u.u, u.v, v.v, u.y, v.y]` of [`solve_box`].
+#[inline]
+fn accumulate(s: &mut [f64; 5], u: f64, v: f64, y: f64) {
+    s[0] += u * u;
+    s[1] += u * v;
+    s[2] += v * v;
+    s[3] += u * y;
+    s[4] += v * y;
 }
 
 /// Minimises `Q(a, b) = |a u + b v - y|^2` over the box from the sums
