@@ -280,6 +280,17 @@ mod tests {
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
     }
 
+    /// The paper's Table 6 case: C38 test 3 measured against the enhanced-JC FE simulation.
+    fn table6() -> Report {
+        diagnose_files(&args(
+            "fixtures/tests/c38.csv",
+            Some("fixtures/diagnose/c38_table6_enhanced_sim.csv"),
+            None,
+            None,
+        ))
+        .unwrap()
+    }
+
     fn args(recordings: &str, simulation: Option<&str>, material: Option<&str>, jc: Option<&str>) -> DiagnoseRequest {
         DiagnoseRequest {
             recordings: root().join(recordings),
@@ -296,13 +307,7 @@ mod tests {
         // Paper Table 6, C38 test 3: FE (enhanced JC) 244, 126.5 N/mm, 0.211 mm vs measured 224, 186,
         // 0.157. (measured - model)/model: Fc 224/244 - 1 = -8.2 %, Ft 186/126.5 - 1 = +47.0 %,
         // tc 0.157/0.211 - 1 = -25.6 %.
-        let r = diagnose_files(&args(
-            "fixtures/tests/c38.csv",
-            Some("fixtures/diagnose/c38_table6_enhanced_sim.csv"),
-            None,
-            None,
-        ))
-        .unwrap();
+        let r = table6();
         // The baseline first absorbs what it may of the nuisance (eta, psi +-3 %, rho Cp +-5 %, with
         // their priors), so the located biases sit within a few points of the raw ones.
         let bias = |o: &str| r.mismatch.iter().find(|m| m.output == o).map(|m| m.bias_pct).unwrap();
@@ -328,13 +333,7 @@ mod tests {
     #[test]
     fn table6_report_has_no_nan_or_inf_in_text_or_json() {
         // Issue 10 item 6: the one-condition Table 6 case used to print `[NaN, NaN]` intervals.
-        let r = diagnose_files(&args(
-            "fixtures/tests/c38.csv",
-            Some("fixtures/diagnose/c38_table6_enhanced_sim.csv"),
-            None,
-            None,
-        ))
-        .unwrap();
+        let r = table6();
         let text = r.to_text();
         let json = serde_json::to_string(&r).unwrap();
         // Whole words only ("information" is fine, "inf" is not). serde_json writes a non-finite f64
@@ -369,13 +368,7 @@ mod tests {
 
     #[test]
     fn residual_plot_has_both_series_per_output() {
-        let r = diagnose_files(&args(
-            "fixtures/tests/c38.csv",
-            Some("fixtures/diagnose/c38_table6_enhanced_sim.csv"),
-            None,
-            None,
-        ))
-        .unwrap();
+        let r = table6();
         let svg = residual_plot(&r);
         for name in ["fc before", "ft after", "tc before"] {
             assert!(svg.contains(name), "{name}");
