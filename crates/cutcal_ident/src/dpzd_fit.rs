@@ -187,7 +187,38 @@ impl ZoneFitProblem {
     /// Unweighted residuals `f_k - F_k` in MPa at `p` (A, B in MPa).
     #[must_use]
     pub fn raw_residuals(&self, p: &DVector<f64>) -> Vec<f64> {
-        self.cached.iter().map(|c| Self::eval(p, c).0 - c.target_mpa).collect()
+        self.raw_residuals_iter(p).collect()
+    }
+
+    /// [`Self::raw_residuals`] without the allocation, paired with the targets `F_k` (MPa).
+    pub(crate) fn raw_residuals_iter<'s>(&'s self, p: &'s DVector<f64>) -> impl Iterator<Item = f64> + 's {
+        self.cached.iter().map(move |c| Self::eval(p, c).0 - c.target_mpa)
+    }
+
+    /// The targets `F_k = sqrt(3) tau_e` (MPa) of the points.
+    pub(crate) fn targets_mpa(&self) -> impl Iterator<Item = f64> + '_ {
+        self.cached.iter().map(|c| c.target_mpa)
+    }
+
+    /// One problem from parts with the same constants and rate term, each point's weight
+    /// multiplied by the weight given with its part (one per point): a quadrature rule assembled
+    /// from its panels without re-evaluating the zone points or their logarithms.
+    pub(crate) fn from_weighted_parts<'p>(
+        parts: impl IntoIterator<Item = (&'p ZoneFitProblem, &'p [f64])>,
+        constants: JcConstants,
+        rate_term: RateTerm,
+    ) -> Self {
+        let (mut points, mut cached, mut weight_sum) = (Vec::new(), Vec::new(), 0.0);
+        for (part, weights) in parts {
+            debug_assert!(part.rate_term == rate_term && part.constants == constants);
+            points.extend_from_slice(&part.points);
+            for (c, w) in part.cached.iter().zip(weights) {
+                let w = w.max(0.0);
+                weight_sum += c.sqrt_weight * c.sqrt_weight * w;
+                cached.push(CachedPoint { sqrt_weight: c.sqrt_weight * w.sqrt(), ..*c });
+            }
+        }
+        Self { points, constants, rate_term, weight_sum, cached }
     }
 
     /// The points.

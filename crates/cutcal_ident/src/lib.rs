@@ -6,8 +6,9 @@
 //! - [`dpzd_fit`]: the paper's Eq 15 identification from one DPZD zone solution;
 //! - [`varpro`]: the same objective with A and B eliminated (variable projection), the fast path
 //!   of [`dpzd_fit::identify`];
-//! - [`quadrature`]: the Eq 15 objective as a zone integral (adaptive Gauss-Kronrod) and the
-//!   `converged` identification;
+//! - [`zone_rule`]: the adaptive Gauss-Kronrod rule of that integral, started at the integrand's
+//!   breakpoints;
+//! - [`quadrature`]: the Eq 15 objective as a zone integral and the `converged` identification;
 //! - [`joint`]: JC fitted jointly to several tests through the extended Oxley model, with
 //!   [`literature`] boxes for n, C and m and an [`identifiability`] verdict;
 //! - [`zone_thickness`]: the zone thickness h = l_AB / C0 of the forward model, made
@@ -33,6 +34,7 @@ pub mod quadrature;
 pub mod start_filter;
 pub mod stats;
 pub mod varpro;
+pub mod zone_rule;
 pub mod zone_thickness;
 
 pub use dpzd_fit::{identify_from_zone, identify_from_zone_with, JcBounds, JcConstants, JcIdentification};
