@@ -87,16 +87,22 @@ pub(crate) fn mlsl_filter<P: Problem + ?Sized>(
     units: &[DVector<f64>],
     rk: f64,
 ) -> Vec<bool> {
+    // Only a point with another within `rk` can filter or be filtered: the others' objective is
+    // not needed (a Monte-Carlo sample's 2 starts usually lie farther apart than `rk`).
+    let near = |i: usize| (0..units.len()).any(|j| j != i && distance(&units[j], &units[i]) <= rk);
     let mut r = DVector::zeros(problem.residual_count());
-    let f: Vec<Option<f64>> = units
-        .iter()
-        .map(|z| {
-            problem.residuals(&bounds.from_unit(z), &mut r).ok()?;
+    let f: Vec<Option<f64>> = (0..units.len())
+        .map(|i| {
+            if !near(i) {
+                return None;
+            }
+            problem.residuals(&bounds.from_unit(&units[i]), &mut r).ok()?;
             let ssr = r.norm_squared();
             ssr.is_finite().then_some(ssr)
         })
         .collect();
     let lower = |j: usize, i: usize| match (f[j], f[i]) {
+        // `None`: not evaluated (no point within `rk`) or failed; never filters nor is filtered.
         (Some(fj), Some(fi)) => fj < fi || (fj == fi && j < i),
         _ => false,
     };

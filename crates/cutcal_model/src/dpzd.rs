@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use crate::cutting_test::CuttingTest;
 use crate::error::ModelError;
 use crate::kinematics;
-use crate::material::Material;
+use crate::material::{AdiabaticHeating, Material};
 use crate::poly::TempPolynomial;
 
 /// Which DPZD model.
@@ -133,9 +133,9 @@ enum HeatCapacity {
     },
     Polynomial {
         rho_cp: TempPolynomial,
-        /// `rho_cp`'s antiderivative polynomial (rebuilt on use when absent, after deserialising).
+        /// Its inverse from room temperature (rebuilt on use when absent, after deserialising).
         #[serde(skip)]
-        heat_content: Option<TempPolynomial>,
+        heating: Option<AdiabaticHeating>,
     },
 }
 
@@ -222,7 +222,7 @@ pub fn solve(material: &Material, state: &ShearPlaneState, config: &DpzdConfig) 
         DpzdVariant::Original { rho_cp_j_per_m3_k } => HeatCapacity::Constant { rho_cp_j_per_m3_k },
         DpzdVariant::Enhanced { .. } => HeatCapacity::Polynomial {
             rho_cp: material.thermal.rho_cp.clone(),
-            heat_content: Some(material.thermal.rho_cp.antiderivative_polynomial()),
+            heating: Some(AdiabaticHeating::new(material.thermal.rho_cp.clone(), material.room_c, material.melting_c)),
         },
     };
     let mut sol = ZoneSolution {
@@ -328,22 +328,21 @@ impl ZoneSolution {
     fn temperature_from_work(&self, work: f64, what: &str) -> Result<f64, ModelError> {
         let t = match &self.heat {
             HeatCapacity::Constant { rho_cp_j_per_m3_k } => self.room_c + work / rho_cp_j_per_m3_k,
-            HeatCapacity::Polynomial { rho_cp, heat_content } => {
+            HeatCapacity::Polynomial { rho_cp, heating } => {
                 let rebuilt;
-                let heat_content = match heat_content {
+                let heating = match heating {
                     Some(h) => h,
                     None => {
-                        rebuilt = rho_cp.antiderivative_polynomial();
+                        rebuilt = AdiabaticHeating::new(rho_cp.clone(), self.room_c, self.melting_c);
                         &rebuilt
                     }
                 };
-                crate::material::adiabatic_temperature(rho_cp, heat_content, self.room_c, work, self.melting_c)
-                    .map_err(|e| match e {
-                        ModelError::AboveMelting { temperature_c, melting_c, .. } => {
-                            ModelError::AboveMelting { what: what.into(), temperature_c, melting_c }
-                        }
-                        other => other,
-                    })?
+                heating.temperature(work).map_err(|e| match e {
+                    ModelError::AboveMelting { temperature_c, melting_c, .. } => {
+                        ModelError::AboveMelting { what: what.into(), temperature_c, melting_c }
+                    }
+                    other => other,
+                })?
             }
         };
         if t >= self.melting_c || t.is_nan() {

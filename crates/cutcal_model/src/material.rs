@@ -172,46 +172,95 @@ pub(crate) fn adiabatic_temperature(
     heat_j_per_m3: f64,
     melting_c: f64,
 ) -> Result<f64, ModelError> {
-    check_finite("heat_j_per_m3", heat_j_per_m3)?;
-    if heat_j_per_m3 < 0.0 {
-        return Err(ModelError::out_of_range("heat_j_per_m3", heat_j_per_m3, "heat >= 0 J/m^3"));
+    AdiabaticHeating::with_heat_content(rho_cp.clone(), heat_content.clone(), from_c, melting_c)
+        .temperature(heat_j_per_m3)
+}
+
+/// The inverse of the adiabatic heating from one start temperature: `T` with
+/// `integral_{from}^{T} rho_cp dT = heat` ([`adiabatic_temperature`]), with the heat content at
+/// the start and at melting evaluated once (a DPZD zone inverts it at every point).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct AdiabaticHeating {
+    rho_cp: crate::poly::TempPolynomial,
+    heat_content: crate::poly::TempPolynomial,
+    from_c: f64,
+    melting_c: f64,
+    /// Heat content at `from_c`, J/m^3.
+    h_from: f64,
+    /// Heat from `from_c` to melting, J/m^3.
+    h_to_melting: f64,
+    /// `rho_cp` at `from_c`, J/(m^3 K).
+    rho_cp_from: f64,
+}
+
+impl AdiabaticHeating {
+    /// The heating of `rho_cp` from `from_c`, below `melting_c`.
+    pub(crate) fn new(rho_cp: crate::poly::TempPolynomial, from_c: f64, melting_c: f64) -> Self {
+        let heat_content = rho_cp.antiderivative_polynomial();
+        Self::with_heat_content(rho_cp, heat_content, from_c, melting_c)
     }
-    let top = melting_c;
-    let h_from = heat_content.value(from_c);
-    let h_top = heat_content.value(top) - h_from;
-    if heat_j_per_m3 >= h_top {
-        return Err(ModelError::AboveMelting {
-            what: "adiabatic temperature".into(),
-            temperature_c: top + (heat_j_per_m3 - h_top) / rho_cp.value(top).max(1.0),
-            melting_c: top,
-        });
+
+    fn with_heat_content(
+        rho_cp: crate::poly::TempPolynomial,
+        heat_content: crate::poly::TempPolynomial,
+        from_c: f64,
+        melting_c: f64,
+    ) -> Self {
+        let h_from = heat_content.value(from_c);
+        let h_to_melting = heat_content.value(melting_c) - h_from;
+        let rho_cp_from = rho_cp.value(from_c);
+        Self { rho_cp, heat_content, from_c, melting_c, h_from, h_to_melting, rho_cp_from }
     }
-    let (mut lo, mut hi) = (from_c, top);
-    let c0 = rho_cp.value(from_c);
-    let mut t = (from_c + heat_j_per_m3 / c0).clamp(lo, hi);
-    for _ in 0..100 {
-        let f = heat_content.value(t) - h_from - heat_j_per_m3;
-        if f > 0.0 {
-            hi = t;
-        } else {
-            lo = t;
+
+    /// The temperature after taking up `heat_j_per_m3`, degC.
+    ///
+    /// **Source:** paper Eq 12 integrated along the flow line (adiabatic).
+    ///
+    /// Returns [`ModelError::AboveMelting`] if the heat would take the material to or past
+    /// melting, and [`ModelError::NoConvergence`] at the cap.
+    pub(crate) fn temperature(&self, heat_j_per_m3: f64) -> Result<f64, ModelError> {
+        check_finite("heat_j_per_m3", heat_j_per_m3)?;
+        if heat_j_per_m3 < 0.0 {
+            return Err(ModelError::out_of_range("heat_j_per_m3", heat_j_per_m3, "heat >= 0 J/m^3"));
         }
-        let df = rho_cp.value(t);
-        let mut next = t - f / df;
-        if !(next > lo && next < hi) || df <= 0.0 {
-            next = 0.5 * (lo + hi);
+        let (from_c, top, rho_cp) = (self.from_c, self.melting_c, &self.rho_cp);
+        if heat_j_per_m3 >= self.h_to_melting {
+            return Err(ModelError::AboveMelting {
+                what: "adiabatic temperature".into(),
+                temperature_c: top + (heat_j_per_m3 - self.h_to_melting) / rho_cp.value(top).max(1.0),
+                melting_c: top,
+            });
         }
-        if (next - t).abs() < 1e-10 * (1.0 + t.abs()) || hi - lo < 1e-10 {
-            return Ok(next);
+        let (mut lo, mut hi) = (from_c, top);
+        let mut t = (from_c + heat_j_per_m3 / self.rho_cp_from).clamp(lo, hi);
+        for _ in 0..100 {
+            let f = self.heat_content.value(t) - self.h_from - heat_j_per_m3;
+            if f == 0.0 {
+                // The root to rounding: a bisection from here would walk away from it and back.
+                return Ok(t);
+            }
+            if f > 0.0 {
+                hi = t;
+            } else {
+                lo = t;
+            }
+            let df = rho_cp.value(t);
+            let mut next = t - f / df;
+            if !(next >= lo && next <= hi) || df <= 0.0 {
+                next = 0.5 * (lo + hi);
+            }
+            if (next - t).abs() < 1e-10 * (1.0 + t.abs()) || hi - lo < 1e-10 {
+                return Ok(next);
+            }
+            t = next;
         }
-        t = next;
+        Err(ModelError::NoConvergence {
+            what: "adiabatic temperature (Newton)".into(),
+            iterations: 100,
+            last_change: hi - lo,
+            tolerance: 1e-10,
+        })
     }
-    Err(ModelError::NoConvergence {
-        what: "adiabatic temperature (Newton)".into(),
-        iterations: 100,
-        last_change: hi - lo,
-        tolerance: 1e-10,
-    })
 }
 
 /// Tool-chip friction law used by the FE cards.
@@ -392,6 +441,20 @@ mod tests {
             let q = m.heat_content_j_per_m3(20.0, t);
             let back = m.temperature_after_heating(20.0, q).unwrap();
             assert!((back - t).abs() < 1e-7, "{t} -> {back}");
+        }
+    }
+
+    #[test]
+    fn temperature_inverts_heat_content_to_rounding_at_every_degree() {
+        // The Newton iteration may land on the root exactly (f = 0 to rounding); it must stop there,
+        // not bisect away and back (at 700 degC that once returned 700.0000000575 after 36 steps).
+        // Independent check: T -> heat by the exact integral -> T, at every degree 21..1400 degC.
+        let m = c38();
+        for k in 21..=1400 {
+            let t = f64::from(k);
+            let q = m.heat_content_j_per_m3(20.0, t);
+            let back = m.temperature_after_heating(20.0, q).unwrap();
+            assert!((back - t).abs() < 1e-9, "{t} -> {back}");
         }
     }
 

@@ -113,7 +113,7 @@ pub fn run_bootstrap(
         Preset::Paper => {
             SampleObjective::Uniform { points: settings.points, rate_term: cutcal_model::RateTerm::Unclamped }
         }
-        Preset::Converged => SampleObjective::Converged(cutcal_ident::ConvergedOptions::default()),
+        Preset::Converged => SampleObjective::Converged(cutcal_ident::ConvergedOptions::monte_carlo()),
     };
     let warm = WarmSampleIdentifier::new(
         &mf.material,
