@@ -6,7 +6,8 @@
 //! - `monte_carlo_converged/...`: the issue-11 default, the `converged` objective with the
 //!   measurements (3 %/5 %) and the unstated choices (h x [0.5, 2], r +- 1) drawn, h = 15 um (about
 //!   the forward model's l_AB/C0), per sample either warm-started from the nominal fit with
-//!   2 starts (`warm_2_starts`, [`cutcal_ident::monte_carlo`]) or cold with 4 starts
+//!   2 starts and the Monte-Carlo settings (`warm_2_starts`, [`cutcal_ident::monte_carlo`],
+//!   `ConvergedOptions::monte_carlo`, what `cutcal identify --bootstrap` runs) or cold with 4 starts
 //!   (`cold_4_starts`, what `cutcal identify --bootstrap` ran before); also 1 warm start, and the
 //!   `paper` objective (51 points, h = 0.1 mm) warm-started. A few hundred samples per
 //!   iteration; the 10^4 figure is extrapolated, and measured once when `CUTCAL_BENCH_MC_FULL=1`
@@ -71,7 +72,7 @@ fn bench(c: &mut Criterion) {
             cfg15,
             bounds,
             consts,
-            SampleObjective::Converged(co),
+            SampleObjective::Converged(ConvergedOptions::monte_carlo()),
             MultistartOptions::new(starts, 1),
             &zone,
             &nominal_fit.identification,
