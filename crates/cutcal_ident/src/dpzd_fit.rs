@@ -208,7 +208,9 @@ impl ZoneFitProblem {
         constants: JcConstants,
         rate_term: RateTerm,
     ) -> Self {
-        let (mut points, mut cached, mut weight_sum) = (Vec::new(), Vec::new(), 0.0);
+        let parts: Vec<_> = parts.into_iter().collect();
+        let total = parts.iter().map(|(part, _)| part.points.len()).sum();
+        let (mut points, mut cached, mut weight_sum) = (Vec::with_capacity(total), Vec::with_capacity(total), 0.0);
         for (part, weights) in parts {
             debug_assert!(part.rate_term == rate_term && part.constants == constants);
             points.extend_from_slice(&part.points);

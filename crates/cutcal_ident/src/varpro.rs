@@ -244,21 +244,21 @@ impl Problem for VarproProblem<'_> {
         let (mut uu, mut uv, mut vv) = (0.0, 0.0, 0.0);
         let rows = e.basis.len();
         // Column-major storage: column j is `cols[j * rows..(j + 1) * rows]`.
-        let cols = out.as_mut_slice();
-        for (i, (([u, v], c), (en, tm))) in
-            e.basis.iter().zip(self.cached).zip(e.eps_n.iter().zip(&e.theta_m)).enumerate()
-        {
+        let (col_n, rest) = out.as_mut_slice().split_at_mut(rows);
+        let (col_c, col_m) = rest.split_at_mut(rows);
+        let points = e.basis.iter().zip(self.cached).zip(e.eps_n.iter().zip(&e.theta_m));
+        for ((([u, v], c), (en, tm)), (on, (oc, om))) in points.zip(col_n.iter_mut().zip(col_c.iter_mut().zip(col_m))) {
             let (u, v) = (*u, *v);
             let (du2, dv) = Self::derivatives(c, *en, *tm, cc, v);
             let r = a * u + b * v - c.sqrt_weight * c.target_mpa;
             let du = [0.0, du2[0], du2[1]];
+            let d = [b * dv[0], a * du[1] + b * dv[1], a * du[2] + b * dv[2]];
+            (*on, *oc, *om) = (d[0], d[1], d[2]);
             for j in 0..3 {
-                let d = a * du[j] + b * dv[j];
-                cols[j * rows + i] = d;
                 s_ur[j] += du[j] * r;
                 s_vr[j] += dv[j] * r;
-                s_ud[j] += u * d;
-                s_vd[j] += v * d;
+                s_ud[j] += u * d[j];
+                s_vd[j] += v * d[j];
             }
             uu += u * u;
             uv += u * v;
@@ -276,7 +276,8 @@ impl Problem for VarproProblem<'_> {
                 (false, false) => (0.0, 0.0),
             };
             if da != 0.0 || db != 0.0 {
-                for (o, [u, v]) in cols[j * rows..(j + 1) * rows].iter_mut().zip(&e.basis) {
+                let col = &mut out.as_mut_slice()[j * rows..(j + 1) * rows];
+                for (o, [u, v]) in col.iter_mut().zip(&e.basis) {
                     *o += da * u + db * v;
                 }
             }
