@@ -1,6 +1,8 @@
 //! cutcal_cli: the command-line face of cutcal. Parses arguments (clap), calls the libraries
 //! (`cutcal_report` for the work, `cutcal_io` for files) and prints; the `cutcal` binary is a thin
 //! wrapper over [`run`]. The Python module (`cutcal_py`) is the other face over the same calls.
+// Unit tests compare bit-identical results on purpose (determinism, warm against cold paths).
+#![cfg_attr(test, allow(clippy::float_cmp))]
 #![warn(missing_docs)]
 // The CLI prints its results: that is its job.
 #![allow(clippy::print_stdout)]

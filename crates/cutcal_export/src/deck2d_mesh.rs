@@ -215,7 +215,8 @@ pub fn build(t1: f64, rake: f64, radius: f64, fine: f64, cut: f64) -> Result<Cut
     let s1 = working_boundary(rake, radius, t1, fine);
     let min_y = s1.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
     let min_x = s1.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
-    let low = s1.iter().find(|p| p[1] == min_y).copied().unwrap_or([0.0, 0.0]);
+    // The point that gave the minimum, found again bit for bit.
+    let low = s1.iter().find(|p| p[1].to_bits() == min_y.to_bits()).copied().unwrap_or([0.0, 0.0]);
     let gap = TOOL_START_GAP_FACTOR * t1 + (low[0] - min_x);
     let shift = [length + gap - low[0], -t1 - min_y];
     let s1: Vec<[f64; 2]> = s1.iter().map(|p| [p[0] + shift[0], p[1] + shift[1]]).collect();

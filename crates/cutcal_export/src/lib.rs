@@ -26,6 +26,8 @@
 //! mu(P) = m0 k (1 - exp(-beta P)) / P,  mu(0) = m0 k beta,  cap tau <= m0 k
 //! k(T)  = sigma_JC(2, 1e4 1/s, T) / sqrt(3) (local shear flow stress, paper Eqs 14, 16)
 //! ```
+// Unit tests compare bit-identical results on purpose (determinism, warm against cold paths).
+#![cfg_attr(test, allow(clippy::float_cmp))]
 #![warn(missing_docs)]
 
 mod abaqus;

@@ -81,7 +81,7 @@ impl UnstatedChoices {
     /// `0 <= r_half_width <= 10`.
     pub fn new(h_factor: [f64; 2], r_half_width: f64) -> Result<Self, IdentError> {
         let [lo, hi] = h_factor;
-        if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && lo <= 1.0 && hi >= 1.0 && hi <= 100.0) {
+        if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && lo <= 1.0 && (1.0..=100.0).contains(&hi)) {
             return Err(IdentError::InvalidOptions(format!(
                 "the h factor range must satisfy 0 < low <= 1 <= high <= 100, got [{lo}, {hi}]"
             )));

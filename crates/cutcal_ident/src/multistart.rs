@@ -195,7 +195,7 @@ pub fn multistart_from<P: Problem + ?Sized>(
     mlsl_sigma: Option<f64>,
     first: Option<&DVector<f64>>,
 ) -> Result<MultistartReport, IdentError> {
-    if first.map_or(false, |f| f.len() != bounds.len()) {
+    if first.is_some_and(|f| f.len() != bounds.len()) {
         return Err(IdentError::InvalidOptions(format!(
             "the warm start has {} parameters, the bounds {}",
             first.map_or(0, DVector::len),
@@ -270,7 +270,7 @@ pub fn multistart_from<P: Problem + ?Sized>(
                     }
                     &mut best
                 };
-                if slot.as_ref().map_or(true, |(_, b)| res.ssr < b.ssr) {
+                if slot.as_ref().is_none_or(|(_, b)| res.ssr < b.ssr) {
                     *slot = Some((i, res));
                 }
             }
@@ -289,7 +289,7 @@ pub fn multistart_from<P: Problem + ?Sized>(
     let starts_at_best = start_ssr.iter().flatten().filter(|s| at_best(s)).count();
     let stopped_starts = joined.iter().flatten().count();
     let stopped_at_best =
-        joined.iter().zip(&start_ssr).filter(|(j, s)| j.is_some() && s.as_ref().map_or(false, at_best)).count();
+        joined.iter().zip(&start_ssr).filter(|(j, s)| j.is_some() && s.as_ref().is_some_and(at_best)).count();
     let filtered_starts = filtered.iter().filter(|f| **f).count();
     let failed_starts = start_ssr.iter().filter(|s| s.is_none()).count() - filtered_starts;
     Ok(MultistartReport {

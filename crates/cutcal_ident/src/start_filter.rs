@@ -103,6 +103,8 @@ pub(crate) fn mlsl_filter<P: Problem + ?Sized>(
         .collect();
     let lower = |j: usize, i: usize| match (f[j], f[i]) {
         // `None`: not evaluated (no point within `rk`) or failed; never filters nor is filtered.
+        // An exact tie is broken by index (the lower one counts as lower).
+        #[allow(clippy::float_cmp)]
         (Some(fj), Some(fi)) => fj < fi || (fj == fi && j < i),
         _ => false,
     };

@@ -196,7 +196,7 @@ fn solve_box(s: [f64; 5], a_box: [f64; 2], b_box: [f64; 2]) -> LinearSolution {
     let mut best: Option<(f64, LinearSolution)> = None;
     let mut consider = |sol: LinearSolution| {
         let val = q(sol.a_mpa, sol.b_mpa);
-        if best.as_ref().map_or(true, |(v, _)| val < *v) {
+        if best.as_ref().is_none_or(|(v, _)| val < *v) {
             best = Some((val, sol));
         }
     };

@@ -124,6 +124,8 @@ pub fn map_edges(edges: &[f64], from: &[f64], to: &[f64]) -> Vec<f64> {
     if from.len() != to.len() || from.len() < 2 {
         return to.to_vec();
     }
+    // A breakpoint is carried exactly (compared bitwise), not through the linear map.
+    #[allow(clippy::float_cmp)]
     let mut out: Vec<f64> = edges
         .iter()
         .map(|&e| {

@@ -1,6 +1,9 @@
 //! Integration test: the default `converged` preset on C38 test 3 (paper Tables 2, 3 and 6):
 //! the Eq 15 zone integral with the solvers' clamped JC law is converged in the quadrature, and
 //! the uniform-N discrete objective of the same law tends to it as N grows.
+// Tests compare bit-identical results on purpose (determinism, warm against cold paths), print
+// what they measure, and reject NaN with negated comparisons.
+#![allow(clippy::float_cmp, clippy::print_stdout, clippy::print_stderr, clippy::neg_cmp_op_on_partial_ord)]
 
 use cutcal_ident::quadrature::{identify_converged, ConvergedOptions};
 use cutcal_ident::{identify_from_zone_with, JcBounds, JcConstants, MultistartOptions};

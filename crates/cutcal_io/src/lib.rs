@@ -4,6 +4,8 @@
 //!
 //! Every input error is an [`InputError`] naming the file, the line (where the format has lines),
 //! the field and the value; every output error is an [`output::OutputError`] naming the path.
+// Unit tests compare bit-identical results on purpose (determinism, warm against cold paths).
+#![cfg_attr(test, allow(clippy::float_cmp))]
 #![warn(missing_docs)]
 
 #[cfg(test)]
@@ -145,7 +147,7 @@ pub fn toml_key_line(text: &str, key: &str) -> Option<usize> {
     // Best match so far: (length of the matched path prefix, line).
     let mut best: Option<(usize, usize)> = None;
     let mut consider = |len: usize, line: usize| {
-        if best.map_or(true, |(l, _)| len > l) {
+        if best.is_none_or(|(l, _)| len > l) {
             best = Some((len, line));
         }
     };

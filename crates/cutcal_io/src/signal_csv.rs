@@ -181,7 +181,7 @@ pub fn read_signal(path: &Path, map: &ChannelMap, mut progress: impl FnMut(u64))
             ),
             other => InputError::new(path, Some(line_no), "(row)", "", other.to_string()),
         })?;
-        if line_no % 65_536 == 0 {
+        if line_no.is_multiple_of(65_536) {
             progress(bytes);
         }
     }

@@ -123,8 +123,8 @@ pub fn derive_sd_from_repeats(tests: &mut [CuttingTest], which: [bool; 3]) {
             }
         }
     }
-    for q in 0..3 {
-        if !which[q] {
+    for (q, &wanted) in which.iter().enumerate() {
+        if !wanted {
             continue;
         }
         let get = |t: &CuttingTest| match q {
@@ -140,7 +140,7 @@ pub fn derive_sd_from_repeats(tests: &mut [CuttingTest], which: [bool; 3]) {
             let vals: Vec<f64> = members.iter().filter_map(|&i| get(&tests[i])).collect();
             let mean = vals.iter().sum::<f64>() / vals.len() as f64;
             let sd = (vals.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (vals.len() - 1) as f64).sqrt();
-            if !(sd > 0.0) {
+            if sd.is_nan() || sd <= 0.0 {
                 continue;
             }
             for &i in &members {

@@ -306,7 +306,7 @@ impl Friction {
                 }
             }
             Self::Coulomb { mu } => {
-                if !(mu.is_finite() && mu >= 0.0 && mu <= 2.0) {
+                if !(mu.is_finite() && (0.0..=2.0).contains(&mu)) {
                     return Err(ModelError::out_of_range("mu", mu, "0 <= mu <= 2"));
                 }
             }

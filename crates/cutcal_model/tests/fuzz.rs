@@ -4,6 +4,9 @@
 //! accepted is finite and in its stated range; a solved zone stays below melting.
 //!
 //! `CUTCAL_FUZZ_CASES` scales the case count (default: a bounded smoke run); see `docs/fuzzing.md`.
+// Tests compare bit-identical results on purpose (determinism, warm against cold paths), print
+// what they measure, and reject NaN with negated comparisons.
+#![allow(clippy::float_cmp, clippy::print_stdout, clippy::print_stderr, clippy::neg_cmp_op_on_partial_ord)]
 
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState};
 use cutcal_model::{CuttingTest, JcParams, Material};
@@ -72,7 +75,7 @@ proptest! {
             let s = jc.flow_stress(strain, rate, temp);
             let g = jc.gradient(strain, rate, temp);
             let physical = a < 1e11 && b < 1e11 && c < 10.0 && eps0 > 1e-12 && eps0 < 1e12;
-            let inputs = strain.is_finite() && strain >= 0.0 && strain < 1e3 && rate.is_finite() && rate > 0.0
+            let inputs = (0.0..1e3).contains(&strain) && rate.is_finite() && rate > 0.0
                 && rate < 1e12 && temp.is_finite();
             if physical && inputs {
                 prop_assert!(s.is_finite(), "sigma {} for {:?} at ({}, {}, {})", s, jc, strain, rate, temp);

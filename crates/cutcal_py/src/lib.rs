@@ -16,6 +16,8 @@
 //! The pyo3 glue (`python`, feature `python`) is compiled only by maturin, so that
 //! `cargo test --workspace` needs no Python headers; the adapters are tested here in Rust and the
 //! module end to end by `tests/python/` (pytest, run by `tests/pytest.rs`).
+// Unit tests compare bit-identical results on purpose (determinism, warm against cold paths).
+#![cfg_attr(test, allow(clippy::float_cmp))]
 
 pub mod diagnose;
 pub mod errors;

@@ -105,9 +105,12 @@ pub fn predict_many(
         .collect()
 }
 
+/// How a column of `predict_many` is read from a prediction.
+pub type ColumnReader = fn(&OxleyPrediction) -> f64;
+
 /// The columns `predict_many` returns, named with their units, and how each is read from a
 /// prediction.
-pub const MANY_COLUMNS: [(&str, fn(&OxleyPrediction) -> f64); 10] = [
+pub const MANY_COLUMNS: [(&str, ColumnReader); 10] = [
     ("fc_n", |p| p.cutting_force_n),
     ("ft_n", |p| p.feed_force_n),
     ("fc_n_per_mm", |p| p.cutting_force_n_per_m / 1e3),

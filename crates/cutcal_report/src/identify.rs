@@ -77,7 +77,7 @@ impl DpzdRequest {
             args.rho_cp_original.or(mf.dpzd.as_ref().map(|d| d.rho_cp_original_j_per_cm3_k)).unwrap_or(3.5325);
         let (h_mm, points) = match args.preset {
             Preset::Paper => {
-                if args.h_mm.is_some_and(|h| h != 0.1) || args.points.is_some_and(|n| n != 51) {
+                if args.h_mm.is_some_and(|h| (h - 0.1).abs() > 1e-12) || args.points.is_some_and(|n| n != 51) {
                     bail!("--preset paper fixes h = 0.1 mm and N = 51 (the choices that reproduce Table 4); use --preset converged for other values");
                 }
                 rho_cp = 3.5325;

@@ -7,6 +7,10 @@
 //! deviation, autocorrelation-aware standard error, drift with its significance, and the dominant
 //! oscillation, with the flags "possible tool wear" and "possible built-up edge". No file I/O here:
 //! the CLI reads files and feeds the reducer. See docs/recordings.md for the methods and sources.
+// Unit tests compare bit-identical results on purpose (determinism, warm against cold paths).
+#![cfg_attr(test, allow(clippy::float_cmp))]
+// `!(x > 0.0)` is how the reducer rejects NaN together with the out-of-range values: kept.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod analyse;
 mod error;

@@ -1,8 +1,9 @@
 //! Deterministic synthetic dynamometer recordings with known truth, for tests, the benchmark and
 //! the labelled-synthetic fixture set (never presented as measured data).
 //!
-//! Profile of each force channel `F(t) = level * s(t) * (1 + drift * (t - t_steady0) / T_steady)
-//! + A sin(2 pi f t) * s(t) + noise`, where `s(t)` rises linearly from 0 to 1 over the entry ramp,
+//! Profile of each force channel
+//! `F(t) = level * s(t) * (1 + drift * (t - t_steady0) / T_steady) + A sin(2 pi f t) * s(t) + noise`,
+//! where `s(t)` rises linearly from 0 to 1 over the entry ramp,
 //! is 1 in the steady cut and falls linearly to 0 over the exit ramp; the noise is a Gaussian AR(1)
 //! process with the given marginal sd (Box & Jenkins 1976, Time Series Analysis, Sec. 3.2.4) drawn
 //! with Box-Muller (Box & Muller 1958, Ann. Math. Stat. 29:610) from a SplitMix64 stream (Steele,

@@ -1,4 +1,7 @@
 //! Integration tests of cutcal_export (one binary, style.md §10).
+// Tests compare bit-identical results on purpose (determinism, warm against cold paths), print
+// what they measure, and reject NaN with negated comparisons.
+#![allow(clippy::float_cmp, clippy::print_stdout, clippy::print_stderr, clippy::neg_cmp_op_on_partial_ord)]
 
 // Shared fixtures: the paper's materials, Table 5 JC sets, options.
 mod common;

@@ -95,7 +95,7 @@ impl Solver<'_> {
             let s = self.envelope(phi)?;
             let fc = s.primary.cutting_force_n_per_m;
             if s.residual_norm() < o.residual_tolerance
-                && best.map_or(true, |b| fc < b.state.primary.cutting_force_n_per_m)
+                && best.is_none_or(|b| fc < b.state.primary.cutting_force_n_per_m)
             {
                 best = Some(DeltaPoint { delta: s.interface.delta, state: s });
             }

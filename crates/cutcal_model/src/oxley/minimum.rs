@@ -122,9 +122,7 @@ impl Solver<'_> {
                 };
                 brent_min(f, l.delta.ln(), r.delta.ln(), o.delta_tolerance, o.max_bracket_iterations, "Oxley delta")
             };
-            if res.is_ok_and(|m| m.x.is_finite() && m.f.is_finite()) {
-                best = found;
-            } else if fc(&found) < fc(&best) {
+            if res.is_ok_and(|m| m.x.is_finite() && m.f.is_finite()) || fc(&found) < fc(&best) {
                 best = found;
             }
         }

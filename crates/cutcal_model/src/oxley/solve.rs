@@ -224,7 +224,7 @@ impl<'a> Solver<'a> {
             }
             if let Ok(s) = self.state_for(p, target, hint) {
                 pool.push(p.phi_rad, s.residual_shear);
-                if s.residual_norm() < tol && found.map_or(true, |f| s.residual_shear.abs() < f.residual_shear.abs()) {
+                if s.residual_norm() < tol && found.is_none_or(|f| s.residual_shear.abs() < f.residual_shear.abs()) {
                     found = Some(s);
                 }
             }

@@ -71,6 +71,7 @@ impl Context<'_> {
             (0.0, 0.0)
         } else {
             // theta^1 = theta exactly: m = 1 (a common JC exponent) skips the power.
+            #[allow(clippy::float_cmp)] // exactly 1: theta^1 = theta bit for bit
             let tm = if jc.m == 1.0 { theta } else { theta.powf(jc.m) };
             (1.0 - tm, -jc.m * tm / theta * kappa / span)
         }
