@@ -39,8 +39,16 @@ fn bootstrap_reports_spread_and_is_independent_of_threads() {
     assert!(std > 3.0 && std < 30.0, "std of A {std}");
     assert!((mean - nominal).abs() < 0.01 * nominal, "mean {mean} nominal {nominal}");
     assert!(a["q025"].as_f64().unwrap() < mean && mean < a["q975"].as_f64().unwrap());
-    // n and m sit at their bounds in every sample (paper Table 4: n = 0.25, m = 1.1): no correlation.
+    // n and m sit at their bounds in every sample (paper Table 4: n = 0.25, m = 1.1): no correlation,
+    // and the samples at a bound are counted as such; A, B and C are free in every sample.
     assert_eq!(b["correlation"][2][0], serde_json::Value::Null);
+    let at = &b["at_bounds"];
+    for (k, name) in ["a_mpa", "b_mpa", "n", "c", "m"].iter().enumerate() {
+        assert_eq!(at[k]["name"], *name);
+        let upper = if k == 2 || k == 4 { 64 } else { 0 };
+        assert_eq!((at[k]["at_lower"].as_u64(), at[k]["at_upper"].as_u64()), (Some(0), Some(upper)), "{name}");
+    }
+    assert_eq!(at[2]["bounds"][1], 0.25);
     assert_eq!(b["choices"], serde_json::Value::Null);
     // By default the unstated choices h (x 1/2..2) and r (+- 1) vary too: the spread of A grows
     // (C38 test 3 with 2000 samples: std 17 MPa from the noise alone, 56 MPa with the choices).

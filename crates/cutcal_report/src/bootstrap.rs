@@ -14,6 +14,7 @@
 //! report does not depend on the thread count.
 
 use std::fmt::Write as _;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use cutcal_ident::bootstrap::{
     bootstrap, BootstrapOptions, BootstrapReport, Measurement, RelativeUncertainty, Sample, UnstatedChoices,
@@ -126,11 +127,38 @@ pub fn run_bootstrap(
         &nominal_fit.zone,
         &nominal_fit.identification,
     )?;
-    let identify = |s: &Sample| -> Result<cutcal_model::JcParams, IdentError> { warm.identify(s) };
+    // Samples that end at a bound of the box, counted as they finish (the count does not depend
+    // on the order, so the report stays identical for any thread count).
+    let boxes = [bounds.a_mpa, bounds.b_mpa, bounds.n, bounds.c, bounds.m];
+    let counts: [[AtomicUsize; 2]; 5] = Default::default();
+    let identify = |s: &Sample| -> Result<cutcal_model::JcParams, IdentError> {
+        let jc = warm.identify(s)?;
+        let v = [jc.a_pa / 1e6, jc.b_pa / 1e6, jc.n, jc.c, jc.m];
+        for ((x, [lo, hi]), count) in v.iter().zip(boxes).zip(&counts) {
+            let tol = 1e-9 * (hi - lo).abs().max(f64::MIN_POSITIVE);
+            if *x <= lo + tol {
+                count[0].fetch_add(1, Ordering::Relaxed);
+            } else if *x >= hi - tol {
+                count[1].fetch_add(1, Ordering::Relaxed);
+            }
+        }
+        Ok(jc)
+    };
     let options = BootstrapOptions { samples: args.bootstrap, seed: settings.multistart.seed, uncertainty, choices };
     let report = bootstrap(&nominal, &options, identify)
         .with_context(|| format!("bootstrap of test {} ({} samples)", test.id, args.bootstrap))?;
-    Ok(Some(BootstrapOutcome { report, source }))
+    let at_bounds = cutcal_ident::dpzd_fit::JC_NAMES
+        .iter()
+        .zip(boxes)
+        .zip(&counts)
+        .map(|((name, bounds), c)| SamplesAtBound {
+            name: (*name).to_string(),
+            bounds,
+            at_lower: c[0].load(Ordering::Relaxed),
+            at_upper: c[1].load(Ordering::Relaxed),
+        })
+        .collect();
+    Ok(Some(BootstrapOutcome { report, source, at_bounds }))
 }
 
 /// A bootstrap report and where its uncertainties came from.
@@ -141,6 +169,22 @@ pub struct BootstrapOutcome {
     pub report: BootstrapReport,
     /// Source of the force and chip uncertainties, e.g. `forces: the row's sd columns (...)`.
     pub source: String,
+    /// For A, B, n, C and m: how many successful samples ended at each bound of the box (the
+    /// spread is conditional on those bounds: the fit presses against them).
+    pub at_bounds: Vec<SamplesAtBound>,
+}
+
+/// The successful Monte-Carlo samples that ended at a bound of one parameter's box.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SamplesAtBound {
+    /// Parameter name (`a_mpa`, `b_mpa`, `n`, `c`, `m`).
+    pub name: String,
+    /// The box `[lower, upper]` of the identification.
+    pub bounds: [f64; 2],
+    /// Samples at the lower bound (within 1e-9 of the box width).
+    pub at_lower: usize,
+    /// Samples at the upper bound.
+    pub at_upper: usize,
 }
 
 /// The force and chip uncertainties: the flag, else the row's sd columns, else 3 % / 5 %.
@@ -214,6 +258,7 @@ pub fn render_bootstrap(b: &BootstrapOutcome) -> String {
             let _ = writeln!(s, "  measurement noise only (--noise-only): h and r fixed");
         }
     }
+    let at_bounds = &b.at_bounds;
     let b = &b.report;
     let _ = writeln!(s, "  parameter        mean         std        2.5 %       97.5 %");
     for p in &b.parameters {
@@ -224,6 +269,27 @@ pub fn render_bootstrap(b: &BootstrapOutcome) -> String {
         let cells: Vec<String> =
             row.iter().map(|c| c.map_or_else(|| format!("{:>7}", "-"), |v| format!("{v:>7.3}"))).collect();
         let _ = writeln!(s, "    {}", cells.join(" "));
+    }
+    for a in at_bounds.iter().filter(|a| a.at_lower + a.at_upper > 0) {
+        let mut parts = Vec::new();
+        if a.at_lower > 0 {
+            parts.push(format!("at its lower bound {} in {} of {} samples", a.bounds[0], a.at_lower, b.succeeded));
+        }
+        if a.at_upper > 0 {
+            parts.push(format!("at its upper bound {} in {} of {} samples", a.bounds[1], a.at_upper, b.succeeded));
+        }
+        let _ = writeln!(
+            s,
+            "  {}: {} (the fit presses against the bound: the spread is conditional on it)",
+            a.name,
+            parts.join(", ")
+        );
+        if a.name == "n" && a.at_lower > 0 && a.bounds[0] == 0.0 {
+            let _ = writeln!(
+                s,
+                "    n = 0 makes eps^n = 1: A and B are not separable in those samples (only A + B is), so their A and B spread reflects the optimiser, not the data"
+            );
+        }
     }
     if let Some(f) = &b.first_failure {
         let _ = writeln!(s, "  first failed sample: {f}");
