@@ -3,11 +3,12 @@
 //! - [`lm`]: a bounded Levenberg-Marquardt solver on nalgebra (why our own: see the module);
 //! - [`multistart`]: seeded Latin-hypercube multistart and fit statistics (covariance, correlation,
 //!   parameters at bounds);
+//! - [`zone_problem`]: the Eq 15 least-squares problem over a set of zone points;
 //! - [`dpzd_fit`]: the paper's Eq 15 identification from one DPZD zone solution;
 //! - [`varpro`]: the same objective with A and B eliminated (variable projection), the fast path
 //!   of [`dpzd_fit::identify`];
-//! - [`zone_rule`]: the adaptive Gauss-Kronrod rule of that integral, started at the integrand's
-//!   breakpoints;
+//! - [`zone_rule`]: the adaptive Gauss-Kronrod rule of that integral ([`gauss_kronrod`] on each
+//!   panel), started at the integrand's breakpoints;
 //! - [`quadrature`]: the Eq 15 objective as a zone integral and the `converged` identification;
 //! - [`joint`]: JC fitted jointly to several tests through the extended Oxley model, with
 //!   [`literature`] boxes for n, C and m and an [`identifiability`] verdict;
@@ -28,6 +29,7 @@ pub mod bootstrap;
 pub mod dpzd_fit;
 pub mod error;
 pub mod fit_stats;
+pub mod gauss_kronrod;
 pub mod identifiability;
 pub mod joint;
 pub mod literature;
@@ -38,6 +40,7 @@ pub mod quadrature;
 pub mod start_filter;
 pub mod stats;
 pub mod varpro;
+pub mod zone_problem;
 pub mod zone_rule;
 pub mod zone_thickness;
 

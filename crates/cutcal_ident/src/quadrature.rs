@@ -17,8 +17,9 @@ use serde::Serialize;
 
 use crate::dpzd_fit::{identify_from_zone_with, identify_warm_with, JcBounds, JcConstants, JcIdentification};
 use crate::error::IdentError;
+pub use crate::gauss_kronrod::gauss_kronrod_15;
 use crate::multistart::MultistartOptions;
-pub use crate::zone_rule::{adaptive_rule, adaptive_rule_from, breakpoints, gauss_kronrod_15, map_edges, ZoneRule};
+pub use crate::zone_rule::{adaptive_rule, adaptive_rule_from, breakpoints, map_edges, ZoneRule};
 use crate::zone_rule::{build_rule, PanelCache};
 
 /// Settings of the `converged` objective.

@@ -19,9 +19,9 @@ use std::cell::RefCell;
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::dpzd_fit::CachedPoint;
 use crate::error::IdentError;
 use crate::lm::{Bounds, Problem};
+use crate::zone_problem::CachedPoint;
 
 /// The projected Eq 15 problem over `q = (n, C, m)`, with `A` and `B` (MPa) eliminated.
 ///

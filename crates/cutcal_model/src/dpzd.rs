@@ -11,8 +11,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::cutting_test::CuttingTest;
 use crate::error::ModelError;
+use crate::heating::AdiabaticHeating;
 use crate::kinematics;
-use crate::material::{AdiabaticHeating, Material};
+use crate::material::Material;
 use crate::poly::TempPolynomial;
 
 /// Which DPZD model.

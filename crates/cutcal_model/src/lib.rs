@@ -24,6 +24,7 @@
 pub mod cutting_test;
 pub mod dpzd;
 pub mod error;
+pub(crate) mod heating;
 pub mod jc;
 pub mod kinematics;
 pub mod material;
