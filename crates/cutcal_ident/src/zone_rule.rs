@@ -325,6 +325,40 @@ mod tests {
         assert_eq!(breakpoints(&z, slow, RateTerm::Clamped), vec![-0.5, 0.0, 0.5]);
     }
 
+    proptest::proptest! {
+        // Invariants of carrying a partition: the result ascends strictly from -1/2 to 1/2, every
+        // breakpoint of `to` is in it, and each piece keeps its number of panels.
+        #[test]
+        fn carried_edges_stay_a_partition_with_the_new_breakpoints(
+            k_from in 0.05..0.49f64, k_to in 0.05..0.49f64,
+            fractions in proptest::collection::vec(0.01..0.99f64, 0..12),
+        ) {
+            let from = [-0.5, -k_from, 0.0, k_from, 0.5];
+            let to = [-0.5, -k_to, 0.0, k_to, 0.5];
+            // Edges: the breakpoints plus points inside the pieces of `from`.
+            let mut edges = from.to_vec();
+            for (i, f) in fractions.iter().enumerate() {
+                let piece = i % 4;
+                edges.push(from[piece] + f * (from[piece + 1] - from[piece]));
+            }
+            edges.sort_by(f64::total_cmp);
+            edges.dedup();
+            let out = map_edges(&edges, &from, &to);
+            proptest::prop_assert_eq!(out.len(), edges.len());
+            proptest::prop_assert!(out.windows(2).all(|w| w[0] < w[1]), "{:?}", out);
+            for b in to {
+                proptest::prop_assert!(out.contains(&b), "{} not in {:?}", b, out);
+            }
+            for piece in 0..4 {
+                let count = |e: &[f64], lo: f64, hi: f64| e.iter().filter(|x| **x > lo && **x < hi).count();
+                proptest::prop_assert_eq!(
+                    count(&edges, from[piece], from[piece + 1]),
+                    count(&out, to[piece], to[piece + 1])
+                );
+            }
+        }
+    }
+
     #[test]
     fn edges_are_carried_piecewise_linearly_between_breakpoints() {
         // By hand: [-0.5, -0.4] -> [-0.5, -0.45] halves offsets from -0.5 ... and [-0.4, 0] ->
