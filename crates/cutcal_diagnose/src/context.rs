@@ -5,13 +5,21 @@
 
 use cutcal_model::CuttingTest;
 
+use crate::hooks::Hooks;
+use crate::simulator::Simulator;
+
 /// Per-dataset context a mechanism needs (computed from the tests only).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Context {
     /// Wear state per test in [0, 1]: VB/VB_max when VB was measured, else order/order_max.
     pub wear_state: Option<Vec<f64>>,
-    /// Built-up-edge onset speed, m/min (chosen on a grid by the fitter).
-    pub bue_onset_m_min: f64,
+    /// Built-up-edge onset on the gate coordinate (chosen on a grid by the fitter): the interface
+    /// temperature, degC, when `bue_gate_c` is set, else the speed, m/min.
+    pub bue_onset: f64,
+    /// The baseline's tool-chip interface temperature per test, degC, when the simulator gives it at
+    /// every test: the built-up edge is then gated by it (it forms on a cool interface and
+    /// disappears as the interface heats, Trent & Wright 2000), else by the speed.
+    pub bue_gate_c: Option<Vec<f64>>,
     /// Reference speed of the speed-dependent friction factor, m/min: the geometric mean of the
     /// test speeds of the whole dataset (kept in folds, so that m_f0 means the same in each).
     pub friction_v_ref_m_min: f64,
@@ -66,7 +74,34 @@ impl Context {
         } else {
             None
         };
-        Self { wear_state, bue_onset_m_min: 0.0, friction_v_ref_m_min, size_h_ref_m, edge_shape, order_from_rows }
+        Self {
+            wear_state,
+            bue_onset: 0.0,
+            bue_gate_c: None,
+            friction_v_ref_m_min,
+            size_h_ref_m,
+            edge_shape,
+            order_from_rows,
+        }
+    }
+
+    /// The context with the built-up-edge gate set to the interface temperature `sim` gives at its
+    /// start parameters without mechanisms, when it gives a finite one above 20 degC at every test.
+    #[must_use]
+    pub fn with_interface_gate(mut self, sim: &dyn Simulator, tests: &[CuttingTest]) -> Self {
+        let start: Vec<f64> = sim.baseline_params().iter().map(|p| p.start).collect();
+        let preds = sim.simulate(tests, &start, &vec![Hooks::NEUTRAL; tests.len()]);
+        let t: Option<Vec<f64>> =
+            preds.ok().and_then(|p| p.iter().map(|p| p.t_int_c.filter(|t| t.is_finite() && *t > 20.0)).collect());
+        self.bue_gate_c = t;
+        self
+    }
+
+    /// The built-up-edge gate coordinate of test `i` of `tests`: its interface temperature, degC,
+    /// when known, else its speed, m/min.
+    #[must_use]
+    pub fn bue_coordinate(&self, tests: &[CuttingTest], i: usize) -> f64 {
+        self.bue_gate_c.as_ref().map_or(tests[i].speed_m_per_s * 60.0, |g| g[i])
     }
 
     /// The context restricted to the tests at `indices` (for leave-one-condition-out folds).
@@ -74,7 +109,8 @@ impl Context {
     pub fn subset(&self, indices: &[usize]) -> Self {
         Self {
             wear_state: self.wear_state.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
-            bue_onset_m_min: self.bue_onset_m_min,
+            bue_onset: self.bue_onset,
+            bue_gate_c: self.bue_gate_c.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             friction_v_ref_m_min: self.friction_v_ref_m_min,
             size_h_ref_m: self.size_h_ref_m,
             edge_shape: self.edge_shape.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),

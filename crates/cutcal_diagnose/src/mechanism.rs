@@ -221,11 +221,12 @@ pub fn info(id: MechanismId) -> MechanismInfo {
     }
 }
 
-/// Smooth low-speed indicator of the built-up edge: 1 well below the onset speed, 0 well above.
+/// Smooth indicator of the built-up edge on its gate coordinate (interface temperature, degC, or
+/// speed, m/min; `Context::bue_coordinate`): 1 well below the onset, 0 well above.
 #[must_use]
-pub fn bue_indicator(speed_m_min: f64, onset_m_min: f64) -> f64 {
-    // Logistic in ln V with a width of 10 % of the onset speed.
-    1.0 / (1.0 + ((speed_m_min / onset_m_min).ln() / 0.1).exp())
+pub fn bue_indicator(coordinate: f64, onset: f64) -> f64 {
+    // Logistic in the log of the coordinate with a width of 10 % of the onset.
+    1.0 / (1.0 + ((coordinate.max(1e-9) / onset.max(1e-9)).ln() / 0.1).exp())
 }
 
 /// Speed-dependent interface friction factor `m_f0 (V / V_ref)^(-p_v)` (design note M5, the power
@@ -264,7 +265,7 @@ pub fn set_hooks(
             MechanismId::HeatPartition => h.heat_partition_scale *= phi[0],
             MechanismId::SizeEffect => h.flow_multiplier *= size_factor(phi[0], t, ctx.size_h_ref_m),
             MechanismId::BuiltUpEdge => {
-                h.rake_shift_rad += phi[0].to_radians() * bue_indicator(t.speed_m_per_s * 60.0, ctx.bue_onset_m_min)
+                h.rake_shift_rad += phi[0].to_radians() * bue_indicator(ctx.bue_coordinate(tests, i), ctx.bue_onset)
             }
             _ => {}
         }
@@ -314,19 +315,32 @@ pub fn testable(id: MechanismId, tests: &[CuttingTest], ctx: &Context, sim: &dyn
         MechanismId::SizeEffect if distinct(&|t| t.uncut_chip_thickness_m) < 2 => {
             Err("needs at least two uncut chip thicknesses".into())
         }
-        MechanismId::BuiltUpEdge if distinct(&|t| t.speed_m_per_s) < 3 => Err("needs at least three speeds".into()),
+        MechanismId::BuiltUpEdge if ctx.bue_gate_c.is_none() && distinct(&|t| t.speed_m_per_s) < 3 => {
+            Err("needs at least three speeds (or the interface temperature of the simulation)".into())
+        }
+        MechanismId::BuiltUpEdge if bue_onsets(tests, ctx).is_empty() => {
+            Err("needs at least three distinct interface temperatures".into())
+        }
         _ => Ok(()),
     }
 }
 
-/// Candidate built-up-edge onset speeds: geometric midpoints between the distinct test speeds,
-/// excluding the top one (the onset must leave at least one test out of the BUE regime).
+/// Candidate built-up-edge onsets on the gate coordinate: geometric midpoints between its distinct
+/// values, excluding the top one (the onset must leave at least two values out of the BUE regime);
+/// at most 8, evenly spread over the ranks.
 #[must_use]
-pub fn bue_onsets(tests: &[CuttingTest]) -> Vec<f64> {
-    let mut v: Vec<f64> = tests.iter().map(|t| t.speed_m_per_s * 60.0).collect();
+pub fn bue_onsets(tests: &[CuttingTest], ctx: &Context) -> Vec<f64> {
+    let mut v: Vec<f64> = (0..tests.len()).map(|i| ctx.bue_coordinate(tests, i)).filter(|x| *x > 0.0).collect();
     v.sort_by(f64::total_cmp);
-    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs());
-    v.windows(2).map(|w| (w[0] * w[1]).sqrt()).take(v.len().saturating_sub(2).max(1)).collect()
+    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-3 * b.abs());
+    if v.len() < 2 {
+        return Vec::new();
+    }
+    let all: Vec<f64> = v.windows(2).map(|w| (w[0] * w[1]).sqrt()).take(v.len().saturating_sub(2).max(1)).collect();
+    if all.len() <= 8 {
+        return all;
+    }
+    (0..8).map(|k| all[k * (all.len() - 1) / 7]).collect()
 }
 
 #[cfg(test)]
@@ -421,5 +435,30 @@ mod tests {
         // Logistic in ln V with width 0.1: at V = onset it is 1/2; at V = 2 onset it is 1/(1 + e^6.93).
         assert!((bue_indicator(80.0, 80.0) - 0.5).abs() < 1e-12);
         assert!(bue_indicator(160.0, 80.0) < 1e-3 && bue_indicator(40.0, 80.0) > 0.999);
+    }
+
+    #[test]
+    fn size_effect_is_relative_to_the_geometric_mean_thickness_and_bue_follows_the_interface() {
+        let t = |id: &str, v: f64, h: f64| CuttingTest::new(id, v / 60.0, h * 1e-3, 1e-3, 0.0).unwrap();
+        let tests = [t("a", 100.0, 0.05), t("b", 100.0, 0.2), t("c", 100.0, 0.1)];
+        let mut ctx = Context::of(&tests);
+        // Geometric mean of 0.05, 0.2 and 0.1 mm: (0.001)^(1/3) = 0.1 mm.
+        assert!((ctx.size_h_ref_m - 0.1e-3).abs() < 1e-12);
+        // l = 100 um: at h = 0.05 mm sqrt(3 / 2), at h_ref 1, at 0.2 mm sqrt(1.5 / 2).
+        assert!((size_factor(100.0, &tests[0], ctx.size_h_ref_m) - 1.5f64.sqrt()).abs() < 1e-12);
+        assert!((size_factor(100.0, &tests[2], ctx.size_h_ref_m) - 1.0).abs() < 1e-12);
+        assert!((size_factor(100.0, &tests[1], ctx.size_h_ref_m) - 0.75f64.sqrt()).abs() < 1e-12);
+        // One speed: no speed gate; with interface temperatures 400, 700, 550 degC the gate is the
+        // temperature and the onset the geometric midpoint of the two coolest, sqrt(400 * 550).
+        let sim = crate::simulator::OxleySimulator::new(
+            &cutcal_model::reference::aisi1045_lalwani2009(),
+            crate::simulator::tests::jaspers(),
+            &crate::simulator::JcBox::wide(),
+            false,
+        );
+        assert!(testable(MechanismId::BuiltUpEdge, &tests, &ctx, &sim).is_err());
+        ctx.bue_gate_c = Some(vec![400.0, 700.0, 550.0]);
+        assert_eq!(bue_onsets(&tests, &ctx), vec![(400.0f64 * 550.0).sqrt()]);
+        assert!(testable(MechanismId::BuiltUpEdge, &tests, &ctx, &sim).is_ok());
     }
 }
