@@ -22,7 +22,7 @@ use crate::mechanism::{info, testable, Context, MechanismId};
 use crate::narrative::{explain, next_test, result_of};
 use crate::problem::{condition_groups, loco_of, rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
-use crate::screen::{cosine, f_test, one_sided, screen_and_refit};
+use crate::screen::{cosine, f_test, grid_chosen, one_sided, screen_and_refit};
 use crate::simulator::Simulator;
 use crate::stats;
 
@@ -109,7 +109,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     let pr = Problem { sim, tests, obs, groups, cfg };
     let n = pr.n();
     let noise = cfg.noise;
-    let ctx0 = Context::of(tests);
+    let ctx0 = Context::of(tests).with_interface_gate(sim, tests);
     let base_spec = Spec { mechanisms: Vec::new(), ctx: ctx0.clone() };
     let base = pr.fit(&base_spec, None)?;
     let mut fit_notes: Vec<String> = Vec::new();
@@ -229,7 +229,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                         let f = &fold[s + 1];
                         let d = f.k - fold[0].k;
                         let p = f_test(nb, f.rss, d, n_tr, f.k, one_sided(cands[i].id));
-                        let a = stats::aicc(f.rss, n_tr, f.k);
+                        let a = stats::aicc(f.rss, n_tr, f.k + grid_chosen(cands[i].id));
                         if p < alpha_round && best.map_or(true, |(b, _)| a < b) {
                             best = Some((a, s + 1));
                         }

@@ -6,11 +6,13 @@
 #![warn(missing_docs)]
 
 pub mod classes;
+mod context;
 pub mod error;
 pub mod fit;
 pub mod hooks;
 mod instrument;
 pub mod noise;
+pub mod nuisance;
 pub mod null;
 pub mod shadow;
 pub mod spline;

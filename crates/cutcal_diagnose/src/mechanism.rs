@@ -12,6 +12,7 @@
 use cutcal_model::CuttingTest;
 use serde::{Deserialize, Serialize};
 
+pub use crate::context::Context;
 use crate::hooks::{Hook, Hooks};
 use crate::simulator::{Prediction, Simulator};
 
@@ -220,91 +221,12 @@ pub fn info(id: MechanismId) -> MechanismInfo {
     }
 }
 
-/// Per-dataset context a mechanism needs (computed from the tests only).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Context {
-    /// Wear state per test in [0, 1]: VB/VB_max when VB was measured, else order/order_max.
-    pub wear_state: Option<Vec<f64>>,
-    /// Built-up-edge onset speed, m/min (chosen on a grid by the fitter).
-    pub bue_onset_m_min: f64,
-    /// Reference speed of the speed-dependent friction factor, m/min: the geometric mean of the
-    /// test speeds of the whole dataset (kept in folds, so that m_f0 means the same in each).
-    pub friction_v_ref_m_min: f64,
-    /// Recorded edge radius per test over the mean recorded radius, when every test records one.
-    pub edge_shape: Option<Vec<f64>>,
-    /// Whether the run order behind `wear_state` is the row order of the recordings (no `order`
-    /// and no `flank_wear_mm` column): the report says so.
-    pub order_from_rows: bool,
-}
-
-impl Context {
-    /// The context of a set of tests (wear state from VB, else from the test order, else from the
-    /// row order: test logs are kept in the order the tests were run, and the report says when
-    /// this assumption was made). Rows sorted by uncut chip thickness or by speed are a sorted
-    /// listing, not a run log, and a trend over them could not be told from that variable's own
-    /// effect: then no run order is assumed.
-    #[must_use]
-    pub fn of(tests: &[CuttingTest]) -> Self {
-        let vb: Vec<Option<f64>> = tests.iter().map(|t| t.flank_wear_m).collect();
-        let mut order_from_rows = false;
-        let wear_state = if vb.iter().all(Option::is_some) {
-            let max = vb.iter().flatten().fold(0.0f64, |a, b| a.max(*b));
-            (max > 0.0).then(|| vb.iter().flatten().map(|v| v / max).collect())
-        } else if tests.iter().all(|t| t.order.is_some()) {
-            let max = tests.iter().filter_map(|t| t.order).max().unwrap_or(0) as f64;
-            (max > 0.0).then(|| tests.iter().filter_map(|t| t.order).map(|o| o as f64 / max).collect())
-        } else if tests.len() >= 2
-            && tests.iter().all(|t| t.order.is_none())
-            && !sorted_by(tests, |t| t.uncut_chip_thickness_m)
-            && !sorted_by(tests, |t| t.speed_m_per_s)
-        {
-            // Row i of n ran i-th: state (i + 1) / n, as an `order` column 1..n would give.
-            order_from_rows = true;
-            let n = tests.len() as f64;
-            Some((0..tests.len()).map(|i| (i + 1) as f64 / n).collect())
-        } else {
-            None
-        };
-        let ln_v: f64 = tests.iter().map(|t| (t.speed_m_per_s * 60.0).ln()).sum::<f64>();
-        let friction_v_ref_m_min = if tests.is_empty() { 1.0 } else { (ln_v / tests.len() as f64).exp() };
-        let radii: Vec<Option<f64>> = tests.iter().map(|t| t.edge_radius_m).collect();
-        let edge_shape = if !radii.is_empty() && radii.iter().all(|r| r.is_some_and(|r| r > 0.0)) {
-            let mean = radii.iter().flatten().sum::<f64>() / radii.len() as f64;
-            Some(radii.iter().flatten().map(|r| r / mean).collect())
-        } else {
-            None
-        };
-        Self { wear_state, bue_onset_m_min: 0.0, friction_v_ref_m_min, edge_shape, order_from_rows }
-    }
-
-    /// The context restricted to the tests at `indices` (for leave-one-condition-out folds).
-    #[must_use]
-    pub fn subset(&self, indices: &[usize]) -> Self {
-        Self {
-            wear_state: self.wear_state.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
-            bue_onset_m_min: self.bue_onset_m_min,
-            friction_v_ref_m_min: self.friction_v_ref_m_min,
-            edge_shape: self.edge_shape.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
-            order_from_rows: self.order_from_rows,
-        }
-    }
-}
-
-/// Whether the rows are monotone (non-decreasing or non-increasing) in `f` with at least two
-/// distinct values.
-fn sorted_by(tests: &[CuttingTest], f: impl Fn(&CuttingTest) -> f64) -> bool {
-    let v: Vec<f64> = tests.iter().map(f).collect();
-    let up = v.windows(2).all(|w| w[1] >= w[0]);
-    let down = v.windows(2).all(|w| w[1] <= w[0]);
-    let varies = v.iter().any(|x| (x - v[0]).abs() > 1e-9 * v[0].abs());
-    varies && (up || down)
-}
-
-/// Smooth low-speed indicator of the built-up edge: 1 well below the onset speed, 0 well above.
+/// Smooth indicator of the built-up edge on its gate coordinate (interface temperature, degC, or
+/// speed, m/min; `Context::bue_coordinate`): 1 well below the onset, 0 well above.
 #[must_use]
-pub fn bue_indicator(speed_m_min: f64, onset_m_min: f64) -> f64 {
-    // Logistic in ln V with a width of 10 % of the onset speed.
-    1.0 / (1.0 + ((speed_m_min / onset_m_min).ln() / 0.1).exp())
+pub fn bue_indicator(coordinate: f64, onset: f64) -> f64 {
+    // Logistic in the log of the coordinate with a width of 10 % of the onset.
+    1.0 / (1.0 + ((coordinate.max(1e-9) / onset.max(1e-9)).ln() / 0.1).exp())
 }
 
 /// Speed-dependent interface friction factor `m_f0 (V / V_ref)^(-p_v)` (design note M5, the power
@@ -341,18 +263,21 @@ pub fn set_hooks(
             }
             MechanismId::ThermalSoftening => h.extra_softening += phi[0],
             MechanismId::HeatPartition => h.heat_partition_scale *= phi[0],
-            MechanismId::SizeEffect => h.flow_multiplier *= size_factor(phi[0], t),
+            MechanismId::SizeEffect => h.flow_multiplier *= size_factor(phi[0], t, ctx.size_h_ref_m),
             MechanismId::BuiltUpEdge => {
-                h.rake_shift_rad += phi[0].to_radians() * bue_indicator(t.speed_m_per_s * 60.0, ctx.bue_onset_m_min)
+                h.rake_shift_rad += phi[0].to_radians() * bue_indicator(ctx.bue_coordinate(tests, i), ctx.bue_onset)
             }
             _ => {}
         }
     }
 }
 
-/// Nix-Gao-type size factor `sqrt(1 + l/h)` with `l` in um.
-fn size_factor(l_um: f64, t: &CuttingTest) -> f64 {
-    (1.0 + l_um * 1e-6 / t.uncut_chip_thickness_m).sqrt()
+/// Nix-Gao-type size factor `sqrt((1 + l/h) / (1 + l/h_ref))` with `l` in um (Nix & Gao 1998): the
+/// strengthening relative to the reference thickness `h_ref` at which the simulation's flow stress
+/// holds (`Context::size_h_ref_m`).
+fn size_factor(l_um: f64, t: &CuttingTest, h_ref_m: f64) -> f64 {
+    let l = l_um * 1e-6;
+    ((1.0 + l / t.uncut_chip_thickness_m) / (1.0 + l / h_ref_m.max(1e-9))).sqrt()
 }
 
 /// Applies the output-level part of mechanism `id` to `preds`: only the dynamometer cross-talk
@@ -390,19 +315,32 @@ pub fn testable(id: MechanismId, tests: &[CuttingTest], ctx: &Context, sim: &dyn
         MechanismId::SizeEffect if distinct(&|t| t.uncut_chip_thickness_m) < 2 => {
             Err("needs at least two uncut chip thicknesses".into())
         }
-        MechanismId::BuiltUpEdge if distinct(&|t| t.speed_m_per_s) < 3 => Err("needs at least three speeds".into()),
+        MechanismId::BuiltUpEdge if ctx.bue_gate_c.is_none() && distinct(&|t| t.speed_m_per_s) < 3 => {
+            Err("needs at least three speeds (or the interface temperature of the simulation)".into())
+        }
+        MechanismId::BuiltUpEdge if bue_onsets(tests, ctx).is_empty() => {
+            Err("needs at least three distinct interface temperatures".into())
+        }
         _ => Ok(()),
     }
 }
 
-/// Candidate built-up-edge onset speeds: geometric midpoints between the distinct test speeds,
-/// excluding the top one (the onset must leave at least one test out of the BUE regime).
+/// Candidate built-up-edge onsets on the gate coordinate: geometric midpoints between its distinct
+/// values, excluding the top one (the onset must leave at least two values out of the BUE regime);
+/// at most 8, evenly spread over the ranks.
 #[must_use]
-pub fn bue_onsets(tests: &[CuttingTest]) -> Vec<f64> {
-    let mut v: Vec<f64> = tests.iter().map(|t| t.speed_m_per_s * 60.0).collect();
+pub fn bue_onsets(tests: &[CuttingTest], ctx: &Context) -> Vec<f64> {
+    let mut v: Vec<f64> = (0..tests.len()).map(|i| ctx.bue_coordinate(tests, i)).filter(|x| *x > 0.0).collect();
     v.sort_by(f64::total_cmp);
-    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs());
-    v.windows(2).map(|w| (w[0] * w[1]).sqrt()).take(v.len().saturating_sub(2).max(1)).collect()
+    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-3 * b.abs());
+    if v.len() < 2 {
+        return Vec::new();
+    }
+    let all: Vec<f64> = v.windows(2).map(|w| (w[0] * w[1]).sqrt()).take(v.len().saturating_sub(2).max(1)).collect();
+    if all.len() <= 8 {
+        return all;
+    }
+    (0..8).map(|k| all[k * (all.len() - 1) / 7]).collect()
 }
 
 #[cfg(test)]
@@ -497,5 +435,30 @@ mod tests {
         // Logistic in ln V with width 0.1: at V = onset it is 1/2; at V = 2 onset it is 1/(1 + e^6.93).
         assert!((bue_indicator(80.0, 80.0) - 0.5).abs() < 1e-12);
         assert!(bue_indicator(160.0, 80.0) < 1e-3 && bue_indicator(40.0, 80.0) > 0.999);
+    }
+
+    #[test]
+    fn size_effect_is_relative_to_the_geometric_mean_thickness_and_bue_follows_the_interface() {
+        let t = |id: &str, v: f64, h: f64| CuttingTest::new(id, v / 60.0, h * 1e-3, 1e-3, 0.0).unwrap();
+        let tests = [t("a", 100.0, 0.05), t("b", 100.0, 0.2), t("c", 100.0, 0.1)];
+        let mut ctx = Context::of(&tests);
+        // Geometric mean of 0.05, 0.2 and 0.1 mm: (0.001)^(1/3) = 0.1 mm.
+        assert!((ctx.size_h_ref_m - 0.1e-3).abs() < 1e-12);
+        // l = 100 um: at h = 0.05 mm sqrt(3 / 2), at h_ref 1, at 0.2 mm sqrt(1.5 / 2).
+        assert!((size_factor(100.0, &tests[0], ctx.size_h_ref_m) - 1.5f64.sqrt()).abs() < 1e-12);
+        assert!((size_factor(100.0, &tests[2], ctx.size_h_ref_m) - 1.0).abs() < 1e-12);
+        assert!((size_factor(100.0, &tests[1], ctx.size_h_ref_m) - 0.75f64.sqrt()).abs() < 1e-12);
+        // One speed: no speed gate; with interface temperatures 400, 700, 550 degC the gate is the
+        // temperature and the onset the geometric midpoint of the two coolest, sqrt(400 * 550).
+        let sim = crate::simulator::OxleySimulator::new(
+            &cutcal_model::reference::aisi1045_lalwani2009(),
+            crate::simulator::tests::jaspers(),
+            &crate::simulator::JcBox::wide(),
+            false,
+        );
+        assert!(testable(MechanismId::BuiltUpEdge, &tests, &ctx, &sim).is_err());
+        ctx.bue_gate_c = Some(vec![400.0, 700.0, 550.0]);
+        assert_eq!(bue_onsets(&tests, &ctx), vec![(400.0f64 * 550.0).sqrt()]);
+        assert!(testable(MechanismId::BuiltUpEdge, &tests, &ctx, &sim).is_ok());
     }
 }

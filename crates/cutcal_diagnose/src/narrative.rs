@@ -29,16 +29,19 @@ pub(crate) fn result_of(
         );
     }
     if c.id == MechanismId::BuiltUpEdge {
-        let v = c.spec.ctx.bue_onset_m_min;
+        let v = c.spec.ctx.bue_onset;
+        let (name, unit, note) = if c.spec.ctx.bue_gate_c.is_some() {
+            (
+                "t_onset",
+                "degC",
+                "interface temperature below which the edge forms, chosen on a grid of the tests' values",
+            )
+        } else {
+            ("v_onset", "m/min", "chosen on a grid of the tested speeds, not fitted")
+        };
         params.insert(
-            "v_onset".into(),
-            ParamValue {
-                value: v,
-                unit: "m/min".into(),
-                ci_low: None,
-                ci_high: None,
-                ci_note: "chosen on a grid of the tested speeds, not fitted".into(),
-            },
+            name.into(),
+            ParamValue { value: v, unit: unit.into(), ci_low: None, ci_high: None, ci_note: note.into() },
         );
     }
     let outputs: Vec<usize> = obs.iter().map(|o| o.output).collect();

@@ -22,6 +22,14 @@ pub(crate) fn one_sided(id: MechanismId) -> bool {
     (inf.params.len() == 1 || id == MechanismId::BuiltUpEdge) && on_bound
 }
 
+/// Parameters of a mechanism chosen on a grid rather than fitted (the built-up-edge onset): they
+/// count in the AICc as any fitted parameter does (Burnham & Anderson 2002, Sec 2.2: K is every
+/// estimated parameter), so that a mechanism with a grid-chosen gate has no advantage over one
+/// whose second parameter is fitted.
+pub(crate) fn grid_chosen(id: MechanismId) -> usize {
+    usize::from(id == MechanismId::BuiltUpEdge)
+}
+
 /// F-test p-value of a nested least-squares comparison (halved for a one-sided single parameter).
 pub(crate) fn f_test(rss0: f64, rss1: f64, d: usize, n: usize, k1: usize, one_sided_param: bool) -> f64 {
     if d == 0 || n <= k1 || rss1 <= 0.0 {
@@ -86,13 +94,13 @@ pub(crate) fn screen_and_refit(
     }
     let mut screened = Vec::new();
     for &m in remaining {
-        let onsets = if m == MechanismId::BuiltUpEdge { bue_onsets(pr.tests) } else { vec![0.0] };
+        let onsets = if m == MechanismId::BuiltUpEdge { bue_onsets(pr.tests, &current_spec.ctx) } else { vec![0.0] };
         let mut best: Option<Screened> = None;
         let mut screen_error: Option<String> = None;
         for onset in onsets {
             let mut ctx = current_spec.ctx.clone();
             if m == MechanismId::BuiltUpEdge {
-                ctx.bue_onset_m_min = onset;
+                ctx.bue_onset = onset;
             }
             let mut mechs = current_spec.mechanisms.clone();
             mechs.push(m);
@@ -196,7 +204,9 @@ pub(crate) fn screen_and_refit(
         }
         let d = f.k - current.k;
         let p = f_test(current.rss, f.rss, d, n, f.k, one_sided(s.id));
-        let daicc = stats::aicc(f.rss, n, f.k) - stats::aicc(current.rss, n, current.k);
+        let grid_now = current_spec.mechanisms.iter().map(|m| grid_chosen(*m)).sum::<usize>();
+        let daicc = stats::aicc(f.rss, n, f.k + grid_now + grid_chosen(s.id))
+            - stats::aicc(current.rss, n, current.k + grid_now);
         let explained = if current.rss > 0.0 { 1.0 - f.rss / current.rss } else { 0.0 };
         // 95 % Wald interval of the mechanism parameters from the joint covariance.
         let cols: Vec<usize> = (0..f.k).collect();

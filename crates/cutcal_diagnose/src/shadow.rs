@@ -363,42 +363,8 @@ impl ShadowSimulation {
             })
             .collect();
         let rms_pct = if sq.1 > 0 { 100.0 * ((sq.0 / sq.1 as f64).sqrt().exp() - 1.0) } else { 0.0 };
-        let mut params = Vec::new();
-        if level_free {
-            params.push(ParamSpec {
-                name: "ln_flow_stress_level".into(),
-                unit: "-".into(),
-                start: 0.0,
-                lower: -0.7,
-                upper: 0.7,
-                prior_sd: None,
-            });
-        }
-        // Nuisance with stated uncertainty (issue 10, item 3): eta and psi +-3 % (one standard
-        // deviation), bounded at +-2 sd: a nuisance that needs more is not nuisance.
-        for (name, start, sd) in [("eta", 0.9, 0.027), ("psi", 0.9, 0.027)] {
-            params.push(ParamSpec {
-                name: name.into(),
-                unit: "-".into(),
-                start,
-                lower: start - 2.0 * sd,
-                upper: start + 2.0 * sd,
-                prior_sd: Some(sd),
-            });
-        }
-        // The material's thermal constants rho Cp and K +-5 %, and the JC thermal exponent m +-5 %
-        // (a published JC set's m is uncertain by at least that much; it acts through temperature
-        // as a softening mechanism does, so it must be absorbed before one is considered).
-        for name in ["ln_rho_cp_scale", "ln_conductivity_scale", "ln_jc_m_scale"] {
-            params.push(ParamSpec {
-                name: name.into(),
-                unit: "-".into(),
-                start: 0.0,
-                lower: -0.10,
-                upper: 0.10,
-                prior_sd: Some(0.05),
-            });
-        }
+        // Nuisance bounded by what its stated uncertainty produces (`crate::nuisance`).
+        let params = crate::nuisance::mode_a_params(level_free);
         Ok(Self {
             ids: tests.iter().map(|t| t.id.clone()).collect(),
             external: external.to_vec(),
