@@ -230,7 +230,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                         let d = f.k - fold[0].k;
                         let p = f_test(nb, f.rss, d, n_tr, f.k, one_sided(cands[i].id));
                         let a = stats::aicc(f.rss, n_tr, f.k + grid_chosen(cands[i].id));
-                        if p < alpha_round && best.map_or(true, |(b, _)| a < b) {
+                        if p < alpha_round && best.is_none_or(|(b, _)| a < b) {
                             best = Some((a, s + 1));
                         }
                     }

@@ -144,7 +144,7 @@ pub(crate) fn t_optimal(pr: &Problem<'_>, a: (&Spec, &[f64]), b: (&Spec, &[f64])
                 diffs[1],
                 diffs[2]
             );
-            if best.as_ref().map_or(true, |(b, _)| dsum > *b) {
+            if best.as_ref().is_none_or(|(b, _)| dsum > *b) {
                 best = Some((dsum, text));
             }
         }

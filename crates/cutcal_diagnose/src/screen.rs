@@ -157,7 +157,7 @@ pub(crate) fn screen_and_refit(
                 None => 0.0,
             };
             let p = if dof > d { stats::f_sf(u / d as f64, d as f64, (dof - d) as f64) } else { f64::NAN };
-            if best.as_ref().map_or(true, |b| u > b.u) {
+            if best.as_ref().is_none_or(|b| u > b.u) {
                 best = Some(Screened { id: m, spec, u, p, absorption, sens: s.column(0).iter().copied().collect() });
             }
         }

@@ -242,7 +242,7 @@ fn tables_at(sh: &Shadow<'_>, tests: &[CuttingTest]) -> Vec<Result<Vec<Table>, D
                     let mut values: Vec<Option<[f64; 5]>> = vec![None; nodes.len()];
                     values[k0] = Some(base);
                     for dir in [1i64, -1] {
-                        let mut prev = Some(base_sol.clone());
+                        let mut prev = Some(base_sol);
                         let mut i = k0 as i64 + dir;
                         while i >= 0 && (i as usize) < nodes.len() {
                             match sh.eval_from(t, Some((k, nodes[i as usize])), prev.as_ref()) {
@@ -303,7 +303,7 @@ impl ShadowSimulation {
         ratios.sort_by(f64::total_cmp);
         let level0 = ratios[ratios.len() / 2].clamp(-2.0, 2.0);
         let starts: Vec<OxleyPrediction> =
-            ok.iter().filter_map(|&i| first[i].as_ref().ok().map(|(_, sol)| sol.clone())).collect();
+            ok.iter().filter_map(|&i| first[i].as_ref().ok().map(|(_, sol)| *sol)).collect();
         let problem = ShadowFit { material, nominal, tests: &fit_tests, external: &fit_ext, starts };
         let bounds = Bounds::new(
             vec!["ln_level".into(), "n".into(), "C".into(), "m".into()],

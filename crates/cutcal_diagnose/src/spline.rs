@@ -64,8 +64,8 @@ impl Table {
             s.powi(3) - s * s,
         );
         let mut out = [0.0; WIDTH];
-        for j in 0..WIDTH {
-            out[j] = h00 * self.y[k][j]
+        for (j, o) in out.iter_mut().enumerate() {
+            *o = h00 * self.y[k][j]
                 + h10 * h * self.slope[k][j]
                 + h01 * self.y[k + 1][j]
                 + h11 * h * self.slope[k + 1][j];
