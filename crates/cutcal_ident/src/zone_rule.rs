@@ -120,8 +120,7 @@ pub fn adaptive_rule_from(
     let mut cache = PanelCache::default();
     let built = build_rule(zone, p, constants, rate_term, options, edges_rel, &mut cache)?;
     let problem = built.problem(zone, constants, rate_term, &mut cache)?;
-    let h = zone.config.zone_thickness_m;
-    let weights = built.panels.iter().flat_map(|&(a, b)| panel_nodes(a, b).map(|n| n.1 / h)).collect();
+    let weights = built.weights(zone.config.zone_thickness_m).concat();
     Ok(ZoneRule {
         points: problem.points().to_vec(),
         weights,
@@ -171,6 +170,11 @@ pub(crate) struct BuiltRule {
 }
 
 impl BuiltRule {
+    /// The Kronrod weights of every panel's nodes divided by `h` (the rule's weights, sum 1).
+    fn weights(&self, h: f64) -> Vec<[f64; 15]> {
+        self.panels.iter().map(|&(a, b)| panel_nodes(a, b).map(|n| n.1 / h)).collect()
+    }
+
     /// The weighted Eq 15 problem on the rule's nodes (weights `w_K15 / h`, summing to 1), from the
     /// cached panels.
     pub(crate) fn problem(
@@ -180,11 +184,10 @@ impl BuiltRule {
         rate_term: RateTerm,
         cache: &mut PanelCache,
     ) -> Result<ZoneFitProblem, IdentError> {
-        let h = zone.config.zone_thickness_m;
         for &(a, b) in &self.panels {
             cache.panel(zone, a, b, constants, rate_term)?;
         }
-        let weights: Vec<[f64; 15]> = self.panels.iter().map(|&(a, b)| panel_nodes(a, b).map(|n| n.1 / h)).collect();
+        let weights = self.weights(zone.config.zone_thickness_m);
         let parts = self.panels.iter().zip(&weights).map(|(&(a, b), w)| {
             let part = &cache.panels[&(a.to_bits(), b.to_bits())];
             (part, &w[..])
