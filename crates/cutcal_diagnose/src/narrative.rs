@@ -179,7 +179,15 @@ pub(crate) fn explain(
             format!("the measured {name} is {:.0} % {side} than the model on average{trend}", m.bias_pct.abs())
         })
         .collect();
-    if big.is_empty() {
+    if big.is_empty() && global.p_value < 0.05 {
+        // No output is off on average, yet the misfit as a whole is beyond the scatter: it sits in
+        // a few conditions or in a pattern that averages out (e.g. one condition far off).
+        s.push_str(&format!(
+            "No output departs from the model on average beyond the assumed measurement scatter, but the misfit as a \
+             whole does (chi-square p = {:.1e}): it sits in a few conditions or in a pattern that averages out. ",
+            global.p_value
+        ));
+    } else if big.is_empty() {
         s.push_str("The model and the recordings agree within the assumed measurement scatter. ");
     } else {
         s.push_str(&format!("Where the model misses: {}. ", big.join("; ")));
@@ -223,4 +231,29 @@ pub(crate) fn explain(
     }
     s.push_str(" In-sample improvement alone is never taken as evidence.");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn summary() -> FitSummary {
+        let rms = OutputRms { fc: Some(5.0), ft: Some(9.0), tc: Some(8.0), t_int: None, all: 7.6 };
+        let stats = FitStats { in_sample: rms.clone(), loco: Some(rms) };
+        FitSummary { before: stats.clone(), after: stats }
+    }
+
+    /// A misfit confined to one condition leaves every output's mean within scatter; the text must
+    /// then not say that model and recordings agree while calling the mismatch real.
+    #[test]
+    fn a_real_misfit_without_an_average_bias_is_not_called_agreement() {
+        let global = GlobalMisfit { chi2: 614.6, dof: 36, p_value: 2.0e-106 };
+        let text = explain(Verdict::Unexplained, &[], &[], &[], &[], &summary(), 14, &global);
+        assert!(!text.contains("agree within"), "{text}");
+        assert!(text.contains("misfit as a whole"), "{text}");
+        assert!(text.contains("The mismatch is real"), "{text}");
+        let quiet = GlobalMisfit { chi2: 30.0, dof: 36, p_value: 0.75 };
+        let text = explain(Verdict::None, &[], &[], &[], &[], &summary(), 14, &quiet);
+        assert!(text.contains("agree within"), "{text}");
+    }
 }
