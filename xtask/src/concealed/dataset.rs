@@ -248,7 +248,11 @@ pub fn generate(family_b: bool, index: usize, hidden: &str, rank: usize, seed: u
         for (i, c) in d.conds.iter().enumerate() {
             let sol = if in_model.contains(&hidden) {
                 let m = mechanism::mods(family_b, hidden, s, &shape, c, &base[i], t_gate);
-                solve(family_b, c, &truth_k, &m)?
+                if family_b {
+                    merchant::solve(c, &truth_k, &m)?
+                } else {
+                    oxley::solve_near(c, &truth_k, &m, Some(base[i].phi))?
+                }
             } else {
                 base[i]
             };

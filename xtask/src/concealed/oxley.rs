@@ -160,53 +160,66 @@ pub fn state(c: &Cond, k: &Consts, mods: &Mods, phi: f64, c0: f64, delta: f64) -
     Some(State { sol, friction_gap: tau_int - target, normal_gap: sigma_n_b - sigma_n })
 }
 
-/// Root of `g` on [lo, hi] by a coarse scan (first sign change) and bisection; capped.
-fn root(lo: f64, hi: f64, steps: usize, mut g: impl FnMut(f64) -> Option<f64>) -> Option<f64> {
+/// Root of `g` on [lo, hi] by a coarse scan and bisection; capped. Without a `hint` the first sign
+/// change is taken; with one, the sign change nearest to it (continuation on one solution branch).
+fn root(lo: f64, hi: f64, steps: usize, hint: Option<f64>, mut g: impl FnMut(f64) -> Option<f64>) -> Option<f64> {
     let mut prev: Option<(f64, f64)> = None;
+    let mut chosen: Option<(f64, f64, f64)> = None;
     for i in 0..=steps {
         let x = lo + (hi - lo) * i as f64 / steps as f64;
         let Some(y) = g(x) else { continue };
         if let Some((xp, yp)) = prev {
             if yp.signum() != y.signum() {
-                let (mut a, mut b, mut ya) = (xp, x, yp);
-                for _ in 0..60 {
-                    let m = 0.5 * (a + b);
-                    let Some(ym) = g(m) else { return Some(m) };
-                    if ym.signum() == ya.signum() {
-                        a = m;
-                        ya = ym;
-                    } else {
-                        b = m;
-                    }
-                    if b - a < 1e-7 * (1.0 + b.abs()) {
-                        break;
-                    }
+                let better = match (hint, chosen) {
+                    (_, None) => true,
+                    (Some(h), Some((a, b, _))) => (0.5 * (xp + x) - h).abs() < (0.5 * (a + b) - h).abs(),
+                    (None, Some(_)) => false,
+                };
+                if better {
+                    chosen = Some((xp, x, yp));
                 }
-                return Some(0.5 * (a + b));
+                if hint.is_none() {
+                    break;
+                }
             }
         }
         prev = Some((x, y));
     }
-    None
+    let (mut a, mut b, mut ya) = chosen?;
+    for _ in 0..60 {
+        let m = 0.5 * (a + b);
+        let Some(ym) = g(m) else { return Some(m) };
+        if ym.signum() == ya.signum() {
+            a = m;
+            ya = ym;
+        } else {
+            b = m;
+        }
+        if b - a < 1e-7 * (1.0 + b.abs()) {
+            break;
+        }
+    }
+    Some(0.5 * (a + b))
 }
 
 /// phi solving tau_int = k_chip at (C0, delta).
-fn solve_phi(c: &Cond, k: &Consts, mods: &Mods, c0: f64, delta: f64) -> Option<State> {
-    let phi =
-        root(5f64.to_radians(), 45f64.to_radians(), 16, |p| state(c, k, mods, p, c0, delta).map(|s| s.friction_gap))?;
+fn solve_phi(c: &Cond, k: &Consts, mods: &Mods, c0: f64, delta: f64, hint: Option<f64>) -> Option<State> {
+    let phi = root(5f64.to_radians(), 45f64.to_radians(), 16, hint, |p| {
+        state(c, k, mods, p, c0, delta).map(|s| s.friction_gap)
+    })?;
     state(c, k, mods, phi, c0, delta)
 }
 
 /// C0 solving sigma'_N = sigma_N at delta (or, with no sign change, the C0 nearest to it).
-fn solve_c0(c: &Cond, k: &Consts, mods: &Mods, delta: f64) -> Option<State> {
-    let gap = |c0: f64| solve_phi(c, k, mods, c0, delta).map(|s| s.normal_gap);
-    if let Some(c0) = root(2.0, 10.0, 8, gap) {
-        return solve_phi(c, k, mods, c0, delta);
+fn solve_c0(c: &Cond, k: &Consts, mods: &Mods, delta: f64, hint: Option<f64>) -> Option<State> {
+    let gap = |c0: f64| solve_phi(c, k, mods, c0, delta, hint).map(|s| s.normal_gap);
+    if let Some(c0) = root(2.0, 10.0, 8, None, gap) {
+        return solve_phi(c, k, mods, c0, delta, hint);
     }
     let mut best: Option<State> = None;
     for i in 0..=8 {
         let c0 = 2.0 + i as f64;
-        if let Some(s) = solve_phi(c, k, mods, c0, delta) {
+        if let Some(s) = solve_phi(c, k, mods, c0, delta, hint) {
             if best.map(|b| s.normal_gap.abs() < b.normal_gap.abs()).unwrap_or(true) {
                 best = Some(s);
             }
@@ -218,7 +231,15 @@ fn solve_c0(c: &Cond, k: &Consts, mods: &Mods, delta: f64) -> Option<State> {
 /// Solves one condition: delta minimising Fc (golden section in ln delta over [0.005, 0.2] after a
 /// coarse scan), C0 and phi by their closures.
 pub fn solve(c: &Cond, k: &Consts, mods: &Mods) -> Result<Solution, String> {
-    let fc_at = |ld: f64| solve_c0(c, k, mods, ld.exp());
+    solve_near(c, k, mods, None)
+}
+
+/// [`solve`] on the solution branch of `phi_hint` (rad): where the closure tau_int = k_chip has
+/// several shear-angle roots (at low speed it can), the root nearest the hint is taken. A hidden
+/// mechanism is solved from the mechanism-free solution's shear angle, so that its effect is the
+/// continuous change of one solution and never a jump to another branch.
+pub fn solve_near(c: &Cond, k: &Consts, mods: &Mods, phi_hint: Option<f64>) -> Result<Solution, String> {
+    let fc_at = |ld: f64| solve_c0(c, k, mods, ld.exp(), phi_hint);
     let (lo, hi) = (0.005f64.ln(), 0.2f64.ln());
     let scan: Vec<(f64, Option<State>)> =
         (0..=6).map(|i| lo + (hi - lo) * i as f64 / 6.0).map(|x| (x, fc_at(x))).collect();
@@ -282,6 +303,18 @@ mod tests {
         assert!((boothroyd_beta(20.0) - 0.104_845).abs() < 1e-5);
         // kappa 1.3e-5, gamma 2.5, V 3, h 1e-4: 1 / (1 + 1.328 sqrt(0.108333)) = 0.69583.
         assert!((loewen_shaw_r1(1.3e-5, 2.5, 3.0, 1e-4) - 0.695_83).abs() < 1e-4);
+    }
+
+    #[test]
+    fn root_takes_the_first_sign_change_or_the_one_nearest_the_hint() {
+        // (x - 1)(x - 2)(x - 3) on [0, 4] has roots 1, 2 and 3.
+        let g = |x: f64| Some((x - 1.0) * (x - 2.0) * (x - 3.0));
+        let first = root(0.0, 4.0, 16, None, g).unwrap();
+        assert!((first - 1.0).abs() < 1e-6, "{first}");
+        let near = root(0.0, 4.0, 16, Some(2.9), g).unwrap();
+        assert!((near - 3.0).abs() < 1e-6, "{near}");
+        let mid = root(0.0, 4.0, 16, Some(2.2), g).unwrap();
+        assert!((mid - 2.0).abs() < 1e-6, "{mid}");
     }
 
     #[test]
