@@ -146,17 +146,13 @@ pub fn info(id: MechanismId) -> MechanismInfo {
         },
         M::ToolChipFriction => MechanismInfo {
             id,
-            title: "tool-chip friction below full sticking (sliding region), varying with speed",
+            title: "tool-chip friction below full sticking (sliding region), falling with speed",
             source: "Zorev 1963; Oxley 1989; Rech, Claudin & D'Eramo 2009; design note M4, M5",
             // m_f = m_f0 (V / V_ref)^(-p_v), V_ref the geometric mean test speed (note M5). The
             // lower bound 0.2 of m_f0 admits the mean Zorev interface shear of note M4 with a short
             // sticking zone (a sticking fraction 0.2 and mu = 0.25 under its sigma_n = sigma_max
-            // (1 - x/l_c)^2.5 give about 0.28 k_chip); |p_v| <= 0.5 is note M5's range. p_v is
-            // two-sided: the sliding-speed law lowers the factor with speed (Rech, Claudin &
-            // D'Eramo 2009: p_v > 0), while in Zorev's stick-slip contact the mean factor rises
-            // toward sticking as the interface heats: the sliding part carries mu sigma_N, capped at
-            // k_chip, and k_chip falls with the interface temperature (Zorev 1963): p_v < 0.
-            params: vec![p("m_f0", "-", 0.2, 1.0, 1.0, 0.85), p("p_v", "-", -0.5, 0.5, 0.0, 0.15)],
+            // (1 - x/l_c)^2.5 give about 0.28 k_chip); p_v <= 0.5 is note M5's range.
+            params: vec![p("m_f0", "-", 0.2, 1.0, 1.0, 0.85), p("p_v", "-", 0.0, 0.5, 0.0, 0.15)],
             hook: Some(Hook::FrictionFactor),
             signature: "Fc - (mild), Ft --, chip thinner; Ft/Fc falling with ln V when p_v > 0",
             covariates: "none for m_f0; p_v needs at least two speeds",
