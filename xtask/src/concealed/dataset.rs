@@ -29,12 +29,14 @@ pub fn std_normal(rng: &mut ChaCha8Rng) -> f64 {
     (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
 }
 
-/// Solves one condition with family `a` (Oxley) or `b` (Merchant + Zorev + Loewen-Shaw).
-pub fn solve(family_b: bool, c: &Cond, k: &Consts, m: &Mods) -> Result<Solution, String> {
+/// Solves one condition with family `a` (Oxley, on the shear-angle branch of `phi_hint` when given:
+/// [`oxley::solve_near`]) or `b` (Merchant + Zorev + Loewen-Shaw, its own solver; the hint is not
+/// used).
+pub fn solve(family_b: bool, c: &Cond, k: &Consts, m: &Mods, phi_hint: Option<f64>) -> Result<Solution, String> {
     if family_b {
         merchant::solve(c, k, m)
     } else {
-        oxley::solve(c, k, m)
+        oxley::solve_near(c, k, m, phi_hint)
     }
 }
 
@@ -224,9 +226,9 @@ pub fn generate(family_b: bool, index: usize, hidden: &str, rank: usize, seed: u
     let mut base = Vec::with_capacity(n);
     let mut without = Vec::with_capacity(n);
     for c in &d.conds {
-        let s = solve(family_b, c, &nominal, &Mods::none())?;
+        let s = solve(family_b, c, &nominal, &Mods::none(), None)?;
         sim.push(edge(&s, c, r0));
-        let b = solve(family_b, c, &truth_k, &Mods::none())?;
+        let b = solve(family_b, c, &truth_k, &Mods::none(), None)?;
         without.push(edge(&b, c, r0));
         base.push(b);
     }
@@ -248,11 +250,7 @@ pub fn generate(family_b: bool, index: usize, hidden: &str, rank: usize, seed: u
         for (i, c) in d.conds.iter().enumerate() {
             let sol = if in_model.contains(&hidden) {
                 let m = mechanism::mods(family_b, hidden, s, &shape, c, &base[i], t_gate);
-                if family_b {
-                    merchant::solve(c, &truth_k, &m)?
-                } else {
-                    oxley::solve_near(c, &truth_k, &m, Some(base[i].phi))?
-                }
+                solve(family_b, c, &truth_k, &m, Some(base[i].phi))?
             } else {
                 base[i]
             };

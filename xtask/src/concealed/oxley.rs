@@ -170,12 +170,9 @@ fn root(lo: f64, hi: f64, steps: usize, hint: Option<f64>, mut g: impl FnMut(f64
         let Some(y) = g(x) else { continue };
         if let Some((xp, yp)) = prev {
             if yp.signum() != y.signum() {
-                let better = match (hint, chosen) {
-                    (_, None) => true,
-                    (Some(h), Some((a, b, _))) => (0.5 * (xp + x) - h).abs() < (0.5 * (a + b) - h).abs(),
-                    (None, Some(_)) => false,
-                };
-                if better {
+                let nearer =
+                    |h: f64| chosen.is_some_and(|(a, b, _)| (0.5 * (xp + x) - h).abs() < (0.5 * (a + b) - h).abs());
+                if chosen.is_none() || hint.is_some_and(nearer) {
                     chosen = Some((xp, x, yp));
                 }
                 if hint.is_none() {
@@ -229,15 +226,11 @@ fn solve_c0(c: &Cond, k: &Consts, mods: &Mods, delta: f64, hint: Option<f64>) ->
 }
 
 /// Solves one condition: delta minimising Fc (golden section in ln delta over [0.005, 0.2] after a
-/// coarse scan), C0 and phi by their closures.
-pub fn solve(c: &Cond, k: &Consts, mods: &Mods) -> Result<Solution, String> {
-    solve_near(c, k, mods, None)
-}
-
-/// [`solve`] on the solution branch of `phi_hint` (rad): where the closure tau_int = k_chip has
-/// several shear-angle roots (at low speed it can), the root nearest the hint is taken. A hidden
-/// mechanism is solved from the mechanism-free solution's shear angle, so that its effect is the
-/// continuous change of one solution and never a jump to another branch.
+/// coarse scan), C0 and phi by their closures. Without `phi_hint` the first shear-angle root above
+/// 5 deg is taken; with one (rad), the root nearest it: where the closure tau_int = k_chip has
+/// several roots (at low speed it can), a hidden mechanism is solved from the mechanism-free
+/// solution's shear angle, so that its effect is the continuous change of one solution and never a
+/// jump to another branch.
 pub fn solve_near(c: &Cond, k: &Consts, mods: &Mods, phi_hint: Option<f64>) -> Result<Solution, String> {
     let fc_at = |ld: f64| solve_c0(c, k, mods, ld.exp(), phi_hint);
     let (lo, hi) = (0.005f64.ln(), 0.2f64.ln());
@@ -323,7 +316,7 @@ mod tests {
         // w 1.6 mm: Fc 576 N, Ft 364 N, t_c 0.43 mm, T_AB 385 degC, T_int 942 degC (delta 0.040, C0 5.8).
         let k = Consts::nominal(&MATERIALS[0]);
         let c = Cond { v: 200.0 / 60.0, h: 0.15e-3, w: 1.6e-3, rake: (-7f64).to_radians() };
-        let s = solve(&c, &k, &Mods::none()).unwrap();
+        let s = solve_near(&c, &k, &Mods::none(), None).unwrap();
         let (fc, ft) = (s.fc * c.w, s.ft * c.w);
         assert!((fc / 576.0 - 1.0).abs() < 0.06, "Fc {fc} N vs 576");
         assert!((ft / 364.0 - 1.0).abs() < 0.15, "Ft {ft} N vs 364");
