@@ -14,6 +14,10 @@ pub struct Hooks {
     /// Extra thermomechanical coupling k: the flow stress sees `T_w + (1 + k)(T - T_w)` (0 = off;
     /// negative = weaker softening than the JC law's; M7).
     pub extra_softening: f64,
+    /// ln of a scale on the JC thermal exponent m beyond the nuisance's (0 = off; M7's second
+    /// form: a thermal exponent fitted at other temperatures). It rides on the extra-softening hook
+    /// (a simulator that supports [`Hook::ExtraSoftening`] supports both).
+    pub thermal_exponent_ln_scale: f64,
     /// Rake-angle shift, rad (built-up edge: positive = larger effective rake; M9).
     pub rake_shift_rad: f64,
     /// Flow-stress multiplier in both zones (size effect M10), 1 = off.
@@ -30,6 +34,7 @@ impl Hooks {
         friction_factor: 1.0,
         heat_partition_scale: 1.0,
         extra_softening: 0.0,
+        thermal_exponent_ln_scale: 0.0,
         rake_shift_rad: 0.0,
         flow_multiplier: 1.0,
         edge_radius_m: 0.0,

@@ -162,10 +162,13 @@ pub fn info(id: MechanismId) -> MechanismInfo {
         M::ThermalSoftening => MechanismInfo {
             id,
             title: "thermomechanical softening different from the model's (stronger or weaker)",
-            source: "Ertuerk, Malakizadi & Larsson 2020; design note M7",
-            // k_T < 0: softening weaker than the JC law's (a larger thermal exponent m, e.g. a
-            // published m fitted at other temperatures); k_T > 0: stronger. Two-sided.
-            params: vec![p("k_T", "-", -0.5, 1.5, 0.0, 0.2)],
+            source: "Ertuerk, Malakizadi & Larsson 2020 (coupling k_T); Johnson & Cook 1983 (exponent m); design note M7",
+            // Two forms, both two-sided: k_T scales the temperature rise the flow stress sees
+            // (k_T < 0 weaker softening, > 0 stronger); ln_m scales the JC thermal exponent m
+            // beyond the nuisance's +-5 % (a thermal exponent fitted at other temperatures, the
+            // commonest source of a wrong softening). Together they span softening that is more
+            // level-like (ln_m) or more temperature-selective (k_T) than the JC law's.
+            params: vec![p("k_T", "-", -0.5, 1.5, 0.0, 0.2), p("ln_m", "-", -0.7, 0.7, 0.0, 0.2)],
             hook: Some(Hook::ExtraSoftening),
             signature: "forces over-predicted increasingly with speed and feed, Ft most, chip thinner",
             covariates: "a speed range of about a decade",
@@ -261,7 +264,10 @@ pub fn set_hooks(
             MechanismId::ToolChipFriction => {
                 h.friction_factor *= friction_factor(phi[0], phi[1], t.speed_m_per_s * 60.0, ctx.friction_v_ref_m_min)
             }
-            MechanismId::ThermalSoftening => h.extra_softening += phi[0],
+            MechanismId::ThermalSoftening => {
+                h.extra_softening += phi[0];
+                h.thermal_exponent_ln_scale += phi[1];
+            }
             MechanismId::HeatPartition => h.heat_partition_scale *= phi[0],
             MechanismId::SizeEffect => h.flow_multiplier *= size_factor(phi[0], t, ctx.size_h_ref_m),
             MechanismId::BuiltUpEdge => {

@@ -66,7 +66,9 @@ fn grid(k: Knob) -> (Vec<f64>, f64) {
             ([0.0, 0.025, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4].map(|u| u * 1e-3).to_vec(), 0.0)
         }
         Knob::Eta | Knob::Psi => (vec![0.81, 0.855, 0.9, 0.945, 0.99], 0.9),
-        Knob::LnRhoCp | Knob::LnK | Knob::LnJcM => (vec![-0.15, -0.075, 0.0, 0.075, 0.15], 0.0),
+        Knob::LnRhoCp | Knob::LnK => (vec![-0.15, -0.075, 0.0, 0.075, 0.15], 0.0),
+        // The nuisance's JC m (+-0.049) and the softening mechanism's m-scale (+-0.7) add here.
+        Knob::LnJcM => (vec![-0.7, -0.5, -0.3, -0.15, -0.075, 0.0, 0.075, 0.15, 0.3, 0.5, 0.7], 0.0),
     }
 }
 
@@ -398,7 +400,7 @@ impl ShadowSimulation {
             nuis(1, 0.9),
             nuis(2, 0.0),
             nuis(3, 0.0),
-            nuis(4, 0.0),
+            nuis(4, 0.0) + h.thermal_exponent_ln_scale,
         ]
     }
 }

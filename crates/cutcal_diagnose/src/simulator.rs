@@ -242,6 +242,7 @@ impl Simulator for OxleySimulator {
 /// - rake shift: the effective rake angle;
 /// - friction factor, heat-partition scale, extra softening: `oxley::Physics` (M4, M6, M7; the
 ///   softening hook evaluates the flow stress at `T_w + (1 + k)(T - T_w)`);
+/// - thermal-exponent scale: the JC m multiplied by `exp(ln_m)` (M7's second form);
 /// - edge radius: Waldorf, DeVor & Kapoor 1998 ploughing (`EdgePloughing::waldorf1998`);
 /// - wear land: Smithey, Kapoor & DeVor 2001 (`FlankWear::smithey2001`).
 ///
@@ -278,7 +279,12 @@ pub fn oxley_with_hooks_from(
         material.room_c,
     )
     .map_err(err)?;
-    let jc = JcParams { a_pa: jc.a_pa * h.flow_multiplier, b_pa: jc.b_pa * h.flow_multiplier, ..*jc };
+    let jc = JcParams {
+        a_pa: jc.a_pa * h.flow_multiplier,
+        b_pa: jc.b_pa * h.flow_multiplier,
+        m: jc.m * h.thermal_exponent_ln_scale.clamp(-1.0, 1.0).exp(),
+        ..*jc
+    };
     let physics = Physics {
         interface_friction_factor: h.friction_factor.clamp(1e-3, 1.0),
         heat_partition_scale: h.heat_partition_scale.clamp(1e-3, 3.0),
@@ -336,5 +342,7 @@ pub(crate) mod tests {
         let f = at(Hooks { flow_multiplier: 1.1, ..Hooks::NEUTRAL }).fc_n_per_m / b.fc_n_per_m;
         assert!((1.02..1.10).contains(&f), "{f}");
         assert!(at(Hooks { extra_softening: 0.5, ..Hooks::NEUTRAL }).fc_n_per_m < b.fc_n_per_m);
+        // A larger JC m (less softening at T* < 1) raises the forces.
+        assert!(at(Hooks { thermal_exponent_ln_scale: 0.3, ..Hooks::NEUTRAL }).fc_n_per_m > b.fc_n_per_m);
     }
 }

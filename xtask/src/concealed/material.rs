@@ -30,13 +30,16 @@ pub struct Jc {
 }
 
 impl Jc {
-    /// Flow stress in Pa; `m_scale` multiplies the thermal exponent m (the thermal-softening
-    /// mechanism of the generator). The thermal factor is kept >= 0.02 (T near or above Tm).
-    pub fn stress(&self, eps: f64, epsdot: f64, t_c: f64, m_scale: f64) -> f64 {
+    /// Flow stress in Pa. `exp_softening` is the generator's thermal-softening mechanism: an extra
+    /// Zerilli-Armstrong exponential thermal factor exp(-c3 (T - Tr)) (Zerilli & Armstrong 1987,
+    /// J. Appl. Phys. 61, 1816; the same exponential form as Usui & Shirakashi's thermal term),
+    /// written per homologous temperature, c3 (Tm - Tr) = `exp_softening` (negative: softening
+    /// weaker than JC's). The JC thermal factor is kept >= 0.02 (T near or above Tm).
+    pub fn stress(&self, eps: f64, epsdot: f64, t_c: f64, exp_softening: f64) -> f64 {
         let hard = self.a + self.b * eps.max(0.0).powf(self.n);
         let rate = 1.0 + self.c * (epsdot / self.eps0).max(1.0).ln();
         let ts = ((t_c - self.tr) / (self.tm - self.tr)).clamp(0.0, 0.999);
-        let therm = (1.0 - ts.powf(self.m * m_scale)).max(0.02);
+        let therm = (1.0 - ts.powf(self.m)).max(0.02) * (-exp_softening * ts).exp();
         hard * rate * therm
     }
 
@@ -233,8 +236,11 @@ mod tests {
     fn jc_flow_stress_by_hand() {
         // AISI 1045 (Jaspers): eps 1, epsdot 1e4, 400 degC:
         // (553.1 + 600.8) (1 + 0.0134 ln 1e4) (1 - (375/1435)^1) = 1153.9 * 1.12342 * 0.738676 = 957.6 MPa.
-        let s = MATERIALS[0].jc.stress(1.0, 1e4, 400.0, 1.0) / 1e6;
+        let s = MATERIALS[0].jc.stress(1.0, 1e4, 400.0, 0.0) / 1e6;
         assert!((s - 957.6).abs() < 0.5, "{s}");
+        // The extra exponential softening 0.5 per unit T*: exp(-0.5 * 0.261324) = 0.877506, 840.3 MPa.
+        let s = MATERIALS[0].jc.stress(1.0, 1e4, 400.0, 0.5) / 1e6;
+        assert!((s - 840.3).abs() < 0.5, "{s}");
         // n_eq at eps 1: 0.234 * 600.8 / 1153.9 = 0.12184.
         assert!((MATERIALS[0].jc.n_eq(1.0) - 0.12184).abs() < 1e-4);
     }

@@ -7,7 +7,7 @@
 //! | edge_ploughing | Albrecht 1960: pressure p = (1 + pi/2) k and friction m_e k on the rounded edge below the stagnation point | Waldorf, DeVor & Kapoor 1998 slip-line |
 //! | flank_wear | uniform normal and shear stress on the land (Teitenberg, Bayoumi & Yucesan 1992), VB growing with cumulative cut length at a Taylor-type speed exponent | Smithey, Kapoor & DeVor 2001, VB linear in order |
 //! | tool_chip_friction | Zorev 1963 stick-slip with a power-law normal stress and a sliding-speed dependent mu | m_f0 (V/V_ref)^-p_v on k_chip |
-//! | thermal_softening | changed JC thermal exponent m | kappa_T on (T - T_w) |
+//! | thermal_softening | extra Zerilli-Armstrong exponential thermal factor exp(-c3 (T - Tr)) | kappa_T on (T - T_w) and a scale on the JC m |
 //! | heat_partition | family a: Loewen & Shaw 1954 shear-plane partition and tool share of the frictional heat blended in; family b: Boothroyd 1963 and all frictional heat to the chip blended in | scale on Boothroyd beta |
 //! | size_effect | Kienzle 1952 power law (h / h_ref)^-m_s on the flow stress | Nix-Gao sqrt(1 + l/h) |
 //! | built_up_edge | rake shift gated by the interface temperature (Trent & Wright 2000) | rake shift gated by a logistic in speed |
@@ -66,8 +66,8 @@ impl Zorev {
 pub struct Mods {
     /// Multiplier on every flow stress (size effect).
     pub flow_mult: f64,
-    /// Multiplier on the JC thermal exponent m (thermal softening).
-    pub m_scale: f64,
+    /// Extra exponential thermal softening c3 (Tm - Tr) (thermal softening; 0 = JC's own).
+    pub exp_softening: f64,
     /// Blend towards the other family's heat partition: 0 = the model's own.
     pub partition_blend: f64,
     /// Interface friction law: family a multiplies k_chip by 1 - blend (1 - its factor); family b
@@ -84,7 +84,7 @@ impl Mods {
     pub const fn none() -> Self {
         Self {
             flow_mult: 1.0,
-            m_scale: 1.0,
+            exp_softening: 0.0,
             partition_blend: 0.0,
             friction: None,
             friction_blend: 0.0,
@@ -144,7 +144,7 @@ pub struct Shape {
     pub zorev_q: f64,
     /// Zorev a.
     pub zorev_a: f64,
-    /// Direction of the softening change: +1 (m larger, less softening) or -1.
+    /// Direction of the softening change: +1 (stronger softening than JC's) or -1 (weaker).
     pub soften_sign: f64,
     /// Quantile of the base interface temperatures that sets the BUE gate.
     pub bue_quantile: f64,
@@ -185,14 +185,14 @@ impl Shape {
 
 /// Range of the strength s searched for a target effect-to-noise ratio, and its unit:
 /// edge radius (m), final VB (m), friction (family a: share of the Zorev reduction; family b: mu
-/// lowered by 60 s % and made speed-dependent), ln m-scale, partition blend (0 = the model's own,
+/// lowered by 60 s % and made speed-dependent), exponential softening c3 (Tm - Tr), partition blend (0 = the model's own,
 /// 1 = the other partition), Kienzle exponent, BUE rake shift (rad), channel-matrix scale.
 pub fn strength_range(id: &str) -> (f64, f64) {
     match id {
         "edge_ploughing" => (2e-6, 80e-6),
         "flank_wear" => (0.01e-3, 0.4e-3),
         "tool_chip_friction" => (0.01, 1.0),
-        "thermal_softening" => (0.01, 0.5),
+        "thermal_softening" => (0.01, 1.0),
         "heat_partition" => (0.02, 1.0),
         "size_effect" => (0.005, 0.6),
         "built_up_edge" => (0.2f64.to_radians(), 25f64.to_radians()),
@@ -217,7 +217,7 @@ pub fn mods(family_b: bool, id: &str, s: f64, shape: &Shape, c: &Cond, base: &So
                 Zorev { mu0: shape.zorev_mu0, q: shape.zorev_q, a: shape.zorev_a }
             });
         }
-        "thermal_softening" => m.m_scale = (shape.soften_sign * s).exp(),
+        "thermal_softening" => m.exp_softening = shape.soften_sign * s,
         "heat_partition" => m.partition_blend = s,
         "size_effect" => m.flow_mult = (c.h / 0.1e-3).powf(-s),
         "built_up_edge" => {

@@ -50,7 +50,7 @@ fn eval(c: &Cond, k: &Consts, mods: &Mods, lambda: f64, t_int: f64) -> Option<Ev
     let eps = gamma / SQRT3;
     let thick = 25e-6 * (c.h / 0.1e-3).sqrt();
     let epsdot = vs / (SQRT3 * thick);
-    let flow = |e: f64, r: f64, t: f64| k.jc.stress(e, r, t, mods.m_scale) * mods.flow_mult;
+    let flow = |e: f64, r: f64, t: f64| k.jc.stress(e, r, t, mods.exp_softening) * mods.flow_mult;
     let (mut t_s, mut tau_s, mut dt_s) = (k.t_work + 200.0, 0.0, 0.0);
     for _ in 0..100 {
         tau_s = flow(eps, epsdot, t_s) / SQRT3;

@@ -89,7 +89,7 @@ pub fn state(c: &Cond, k: &Consts, mods: &Mods, phi: f64, c0: f64, delta: f64) -
     let gamma_ab = a.cos() / (2.0 * phi.sin() * cpa);
     let eps_ab = gamma_ab / SQRT3;
     let epsdot_ab = c0 * vs / (SQRT3 * l_ab);
-    let flow = |eps: f64, rate: f64, t: f64| k.jc.stress(eps, rate, t, mods.m_scale) * mods.flow_mult;
+    let flow = |eps: f64, rate: f64, t: f64| k.jc.stress(eps, rate, t, mods.exp_softening) * mods.flow_mult;
     // T_AB fixed point (F_s depends on k_AB(T_AB)); damped, capped at 100 steps.
     let mut t_ab = k.t_work + 200.0;
     let (mut k_ab, mut dt_sz) = (0.0, 0.0);
