@@ -1,4 +1,4 @@
-//! The diagnosis algorithm: baseline fit -> locate -> screen -> joint refit -> decide -> report
+//! The diagnosis algorithm: baseline fit -> locate -> screen -> joint refit -> decide (`crate::verdict`) -> report
 //! (design note Sec 3.2-3.9).
 //!
 //! Acceptance of a mechanism needs all of: (1) an F-test of the joint refit below the level
@@ -18,13 +18,14 @@ use crate::error::DiagnoseError;
 use crate::fit::{observations, Spec, OUTPUTS};
 use crate::instrument::{fit_artefacts, Artefact};
 use crate::locate::locate;
-use crate::mechanism::{info, testable, Context, MechanismId};
+use crate::mechanism::{testable, Context, MechanismId};
 use crate::narrative::{explain, next_test, result_of};
 use crate::problem::{condition_groups, loco_of, rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
 use crate::screen::{cosine, f_test, grid_chosen, one_sided, screen_and_refit};
 use crate::simulator::Simulator;
 use crate::stats;
+use crate::verdict::decide;
 
 /// Settings of one diagnosis; no `Default`: the noise levels are a statement about the data.
 #[derive(Debug, Clone, PartialEq)]
@@ -351,56 +352,8 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     }
 
     // Verdict.
-    let structured = global.p_value < 1e-3 || mismatch.iter().any(|m| m.p_value < 1e-3);
-    let mut verdict = if !accepted.is_empty() {
-        Verdict::MissingPhysics
-    } else if !ambiguous.is_empty() {
-        Verdict::Ambiguous
-    } else if base_loco.is_none() && global.p_value < 0.01 {
-        // Too few conditions to validate anything: list what could explain the misfit as a whole,
-        // or the sign of a clearly missed output (its screening sensitivity points the same way
-        // and carries at least 30 % of the mechanism's largest effect, and its refit explains at
-        // least 20 % of the misfit).
-        for m in mismatch.iter().filter(|m| m.p_value < 0.01) {
-            let j = OUTPUTS.iter().position(|o| *o == m.output).unwrap_or(0);
-            for c in &first_round {
-                let idx: Vec<usize> = (0..pr.obs.len()).filter(|&i| pr.obs[i].output == j).collect();
-                let smax = c.sens.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-                let agree = idx.iter().all(|&i| {
-                    // The residual is measured - model; a mechanism adding model output s moves the
-                    // residual by -s, so it explains the gap when s has the sign of the residual.
-                    -c.sens[i] * base.resid[i] > 0.0 && c.sens[i].abs() >= 0.3 * smax
-                });
-                if agree && c.explained >= 0.2 && !idx.is_empty() && !ambiguous.contains(&c.id) {
-                    ambiguous.push(c.id);
-                }
-            }
-        }
-        for c in &first_round {
-            let moved = c
-                .fit
-                .x
-                .iter()
-                .skip(base.k)
-                .zip(info(c.id).params.iter())
-                .any(|(v, pi)| (v - pi.off).abs() > 1e-3 * (pi.upper - pi.lower));
-            if c.explained >= 0.5 && moved && !ambiguous.contains(&c.id) {
-                ambiguous.push(c.id);
-            }
-        }
-        if ambiguous.is_empty() {
-            Verdict::Unexplained
-        } else {
-            Verdict::Ambiguous
-        }
-    } else if structured {
-        Verdict::Unexplained
-    } else {
-        Verdict::None
-    };
-    if verdict == Verdict::Ambiguous && ambiguous.len() == 1 && base_loco.is_some() {
-        verdict = Verdict::Unexplained;
-    }
+    let verdict =
+        decide(&accepted, &mut ambiguous, base_loco.is_some(), &global, &mismatch, &first_round, &pr.obs, &base);
     all_results.sort_by(|a, b| {
         let key = |m: &MechanismResult| m.delta_aicc.unwrap_or(f64::INFINITY);
         b.accepted.cmp(&a.accepted).then(key(a).total_cmp(&key(b)))

@@ -31,6 +31,7 @@ pub use problem::condition_groups;
 pub mod report;
 mod screen;
 pub mod simulator;
+mod verdict;
 
 pub use diagnose::{diagnose, Config};
 pub use mechanism::MechanismId;
