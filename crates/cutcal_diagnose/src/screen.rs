@@ -59,20 +59,6 @@ pub(crate) fn cosine(a: &[f64], b: &[f64]) -> f64 {
     }
 }
 
-/// Whether the joint 95 % Wald region of `d` parameters excludes the point at `delta` from the
-/// estimate: `delta' C^-1 delta / (d s2) > F(0.95; d, df2)`, with `C` their block of the inverse
-/// information (unscaled) and `s2` the residual variance (Seber & Wild 1989, Sec 5.2).
-pub(crate) fn wald_region_excludes(cov_block: &DMatrix<f64>, delta: &DVector<f64>, s2: f64, df2: usize) -> bool {
-    let d = delta.len();
-    if d == 0 || df2 == 0 {
-        return false;
-    }
-    cov_block.clone().try_inverse().is_some_and(|bi| {
-        let w = (delta.transpose() * bi * delta)[(0, 0)] / (d as f64 * s2);
-        w.is_finite() && stats::f_sf(w, d as f64, df2 as f64) < 0.05
-    })
-}
-
 /// Screens `remaining` mechanisms by absorbability-aware score tests and refits the best jointly.
 pub(crate) fn screen_and_refit(
     pr: &Problem<'_>,
@@ -276,7 +262,10 @@ pub(crate) fn screen_and_refit(
                 let joint_excludes = d >= 2 && df2 > 0 && {
                     let block = cov.view((current.k, current.k), (d, d)).into_owned();
                     let delta = DVector::from_iterator(d, (0..d).map(|c| f.x[current.k + c] - inf.params[c].off));
-                    wald_region_excludes(&block, &delta, s2f, df2)
+                    block.try_inverse().is_some_and(|bi| {
+                        let w = (delta.transpose() * bi * &delta)[(0, 0)] / (d as f64 * s2f);
+                        w.is_finite() && stats::f_sf(w, d as f64, df2 as f64) < 0.05
+                    })
                 };
                 ci_ok = df2 > 0 && (d == 1 || any_excludes || joint_excludes);
                 if far_bound {
@@ -319,24 +308,4 @@ pub(crate) fn screen_and_refit(
 /// `Some(v)` for a finite number, `None` otherwise (reports never carry NaN or inf).
 pub(crate) fn finite(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn joint_region_sees_what_correlated_intervals_miss() {
-        // C = [[1, 0.99], [0.99, 1]], s2 = 1: each marginal interval (se 1, t(20) 2.09) holds 0.
-        // C^-1 = [[1, -0.99], [-0.99, 1]] / 0.0199. Against the anti-diagonal (1, -1):
-        // (1 + 1 + 1.98) / 0.0199 = 200, W = 100 >> F(0.95; 2, 20) = 3.49: excluded. Along the
-        // diagonal (1, 1): (2 - 1.98) / 0.0199 = 1.005, W = 0.50 < 3.49: not excluded.
-        let c = DMatrix::from_row_slice(2, 2, &[1.0, 0.99, 0.99, 1.0]);
-        assert!(wald_region_excludes(&c, &DVector::from_vec(vec![1.0, -1.0]), 1.0, 20));
-        assert!(!wald_region_excludes(&c, &DVector::from_vec(vec![1.0, 1.0]), 1.0, 20));
-        // A singular block or no degrees of freedom decide nothing.
-        let singular = DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1.0, 1.0]);
-        assert!(!wald_region_excludes(&singular, &DVector::from_vec(vec![1.0, -1.0]), 1.0, 20));
-        assert!(!wald_region_excludes(&c, &DVector::from_vec(vec![1.0, -1.0]), 1.0, 0));
-    }
 }
