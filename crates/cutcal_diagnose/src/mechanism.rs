@@ -170,7 +170,7 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             // level-like (ln_m) or more temperature-selective (k_T) than the JC law's.
             params: vec![p("k_T", "-", -0.5, 1.5, 0.0, 0.2), p("ln_m", "-", -0.7, 0.7, 0.0, 0.2)],
             hook: Some(Hook::ExtraSoftening),
-            signature: "forces over-predicted increasingly with speed and feed, Ft most, chip thinner",
+            signature: "k_T: forces over-predicted increasingly with speed and feed, Ft most, chip thinner; ln_m: mostly a force level with a mild trend in temperature",
             covariates: "a speed range of about a decade",
             confounders: &[M::HeatPartition, M::ToolChipFriction],
             separate_by: "widen the speed range (x10) and measure the interface temperature",
