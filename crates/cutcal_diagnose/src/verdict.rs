@@ -34,8 +34,8 @@ pub(crate) fn decide(
         // least 20 % of the misfit).
         for m in mismatch.iter().filter(|m| m.p_value < 0.01) {
             let j = OUTPUTS.iter().position(|o| *o == m.output).unwrap_or(0);
+            let idx: Vec<usize> = (0..obs.len()).filter(|&i| obs[i].output == j).collect();
             for c in first_round {
-                let idx: Vec<usize> = (0..obs.len()).filter(|&i| obs[i].output == j).collect();
                 let smax = c.sens.iter().fold(0.0f64, |a, b| a.max(b.abs()));
                 let agree = idx.iter().all(|&i| {
                     // The residual is measured - model; a mechanism adding model output s moves the
