@@ -14,6 +14,7 @@
 //! never read by the diagnosis), `outcomes-<family>.json`, `scores.json`, `summary.md`.
 
 mod dataset;
+mod detectable;
 mod material;
 mod mechanism;
 mod merchant;
@@ -116,6 +117,7 @@ fn one(
         hidden: hidden.into(),
         enr: None,
         enr_shape: None,
+        enr_beyond_nuisance: None,
         status: "generation_failed".into(),
         reason: String::new(),
         verdict: None,
@@ -134,6 +136,7 @@ fn one(
     };
     o.enr = Some(ds.truth.enr);
     o.enr_shape = Some(ds.truth.enr_shape);
+    o.enr_beyond_nuisance = ds.truth.enr_beyond_nuisance;
     let dir = opts.out.join("data").join(family).join(format!("{index:03}"));
     let (rec, sim) = (dir.join("recordings.csv"), dir.join("simulation.csv"));
     let written = std::fs::create_dir_all(&dir)

@@ -190,9 +190,11 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             id,
             title: "size effect (strengthening at small uncut chip thickness)",
             source: "Nix & Gao 1998; Joshi & Melkote 2004; design note M10",
-            // Up to 300 um: with l >> h the factor tends to sqrt(l/h), so the same form also covers
-            // power-law (Kienzle-type) size effects of exponent up to 1/2 over a feed range.
-            params: vec![p("l_um", "um", 0.0, 300.0, 0.0, 5.0)],
+            // Up to 3000 um: with l >> h the factor tends to sqrt(l/h), so the same form also covers
+            // power-law (Kienzle-type) size effects of exponent up to 1/2 over a feed range; the
+            // local exponent 0.5 (l/h) / (1 + l/h) is 0.45 at l/h = 10, i.e. h = 0.3 mm (a bound
+            // of 300 um capped it at 0.25 there, and left strong size effects unexplained).
+            params: vec![p("l_um", "um", 0.0, 3000.0, 0.0, 5.0)],
             hook: Some(Hook::FlowMultiplier),
             signature: "Fc and Ft up by the same factor at small h, Ft/Fc and chip unchanged",
             covariates: "at least three feeds",

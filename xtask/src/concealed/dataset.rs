@@ -20,7 +20,7 @@ use serde::Serialize;
 
 use super::material::{Cond, Consts, Solution, MATERIALS};
 use super::mechanism::{self, Mods, Shape};
-use super::{merchant, oxley};
+use super::{detectable, merchant, oxley};
 
 /// Standard normal deviate (Box-Muller).
 pub fn std_normal(rng: &mut ChaCha8Rng) -> f64 {
@@ -71,6 +71,9 @@ pub struct Truth {
     pub columns: Vec<String>,
     /// The perturbed constants (truth) of the recordings.
     pub nuisance: Consts,
+    /// ENR left after the generator's own nuisance constants move within their stated ranges
+    /// (`detectable.rs`); `None` when a perturbed solve failed.
+    pub enr_beyond_nuisance: Option<f64>,
     /// The mechanism's shape parameters.
     pub shape: Shape,
 }
@@ -339,6 +342,14 @@ pub fn generate(family_b: bool, index: usize, hidden: &str, rank: usize, seed: u
         _ => {}
     }
     let (e, e_shape) = enr(&with, &without, &noise, outs);
+    let recorded = |s: &Solution, c: &Cond| edge(s, c, r0);
+    let e_beyond = if hidden == "null" {
+        Some(0.0)
+    } else {
+        detectable::enr_beyond_nuisance(
+            family_b, &d.conds, &nominal, &truth_k, &base, &with, &without, &noise, outs, &recorded,
+        )
+    };
     // Noise, then the files.
     let rec: Vec<[f64; 4]> =
         with.iter().map(|y| std::array::from_fn(|o| y[o] * (noise[o] * std_normal(&mut rng)).exp())).collect();
@@ -404,6 +415,7 @@ pub fn generate(family_b: bool, index: usize, hidden: &str, rank: usize, seed: u
         target_enr: target,
         enr: e,
         enr_shape: e_shape,
+        enr_beyond_nuisance: e_beyond,
         strength,
         at_bound,
         edge_radius_um: [if plough { 0.0 } else { r0 * 1e6 }, r_rec * 1e6],
