@@ -179,7 +179,11 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             id,
             title: "heat partition into the workpiece different from Boothroyd's",
             source: "Boothroyd 1963; Oxley 1989; design note M6",
-            params: vec![p("k_beta", "-", 0.4, 1.8, 1.0, 1.3)],
+            // Up to 3 (beta itself capped at 1): Boothroyd's correlation gives 0.1-0.3 at the
+            // thermal numbers of practical cutting, and a partition from another heat-source
+            // model (e.g. Loewen & Shaw 1954's shear-plane share) can differ from it by a factor;
+            // at 1.8 estimates were pinned at the bound.
+            params: vec![p("k_beta", "-", 0.4, 3.0, 1.0, 1.3)],
             hook: Some(Hook::HeatPartition),
             signature: "force residual that follows the thermal number V h (largest at low V h)",
             covariates: "temperature measurement to separate it from JC m",

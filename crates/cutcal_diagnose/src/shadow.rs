@@ -49,7 +49,7 @@ enum Knob {
 fn grid(k: Knob) -> (Vec<f64>, f64) {
     match k {
         Knob::Hook(Hook::FrictionFactor) => ((2..=10).map(|i| f64::from(i) / 10.0).collect(), 1.0),
-        Knob::Hook(Hook::HeatPartition) => (vec![0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8], 1.0),
+        Knob::Hook(Hook::HeatPartition) => (vec![0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.2, 2.6, 3.0], 1.0),
         Knob::Hook(Hook::ExtraSoftening) => {
             (vec![-0.5, -0.35, -0.2, -0.1, 0.0, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0, 1.25, 1.5], 0.0)
         }
