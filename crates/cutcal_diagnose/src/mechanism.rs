@@ -343,8 +343,10 @@ pub fn testable(id: MechanismId, tests: &[CuttingTest], ctx: &Context, sim: &dyn
 }
 
 /// Candidate built-up-edge onsets on the gate coordinate: geometric midpoints between its distinct
-/// values, excluding the top one (the onset must leave at least two values out of the BUE regime);
-/// at most 8, evenly spread over the ranks.
+/// values that leave at least a third of them (and at least two) out of the BUE regime; at most 8,
+/// evenly spread over the ranks. An edge over nearly every condition is a uniform rake change, which
+/// friction or softening explains as well: the onset is identified only with conditions on both
+/// sides (with two above it, friction and softening datasets were named `built_up_edge`).
 #[must_use]
 pub fn bue_onsets(tests: &[CuttingTest], ctx: &Context) -> Vec<f64> {
     let mut v: Vec<f64> = (0..tests.len()).map(|i| ctx.bue_coordinate(tests, i)).filter(|x| *x > 0.0).collect();
@@ -353,7 +355,8 @@ pub fn bue_onsets(tests: &[CuttingTest], ctx: &Context) -> Vec<f64> {
     if v.len() < 2 {
         return Vec::new();
     }
-    let all: Vec<f64> = v.windows(2).map(|w| (w[0] * w[1]).sqrt()).take(v.len().saturating_sub(2).max(1)).collect();
+    let above = 2.max(v.len().div_ceil(3));
+    let all: Vec<f64> = v.windows(2).map(|w| (w[0] * w[1]).sqrt()).take(v.len().saturating_sub(above).max(1)).collect();
     if all.len() <= 8 {
         return all;
     }
