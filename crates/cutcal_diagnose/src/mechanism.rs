@@ -451,6 +451,24 @@ mod tests {
     }
 
     #[test]
+    fn bue_onsets_leave_a_third_of_the_gate_values_above() {
+        // Nine interface temperatures 400, 450, ..., 800 degC: a third (3) must stay above the
+        // onset, so the candidates are the 6 midpoints below the seventh value, the last one
+        // sqrt(650 * 700); with three values, two stay above and one midpoint remains.
+        let t = |i: usize| CuttingTest::new(&format!("t{i}"), 2.0, 0.1e-3, 1e-3, 0.0).unwrap();
+        let tests: Vec<CuttingTest> = (0..9).map(t).collect();
+        let mut ctx = Context::of(&tests);
+        ctx.bue_gate_c = Some((0..9).map(|i| 400.0 + 50.0 * i as f64).collect());
+        let on = bue_onsets(&tests, &ctx);
+        assert_eq!(on.len(), 6);
+        assert!((on[5] - (650.0f64 * 700.0).sqrt()).abs() < 1e-9, "{on:?}");
+        let tests3: Vec<CuttingTest> = (0..3).map(t).collect();
+        let mut ctx3 = Context::of(&tests3);
+        ctx3.bue_gate_c = Some(vec![400.0, 500.0, 600.0]);
+        assert_eq!(bue_onsets(&tests3, &ctx3), vec![(400.0f64 * 500.0).sqrt()]);
+    }
+
+    #[test]
     fn bue_indicator_switches_at_onset() {
         // Logistic in ln V with width 0.1: at V = onset it is 1/2; at V = 2 onset it is 1/(1 + e^6.93).
         assert!((bue_indicator(80.0, 80.0) - 0.5).abs() < 1e-12);
