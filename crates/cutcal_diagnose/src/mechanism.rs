@@ -455,7 +455,7 @@ mod tests {
         // Nine interface temperatures 400, 450, ..., 800 degC: a third (3) must stay above the
         // onset, so the candidates are the 6 midpoints below the seventh value, the last one
         // sqrt(650 * 700); with three values, two stay above and one midpoint remains.
-        let t = |i: usize| CuttingTest::new(&format!("t{i}"), 2.0, 0.1e-3, 1e-3, 0.0).unwrap();
+        let t = |i: usize| CuttingTest::new(format!("t{i}"), 2.0, 0.1e-3, 1e-3, 0.0).unwrap();
         let tests: Vec<CuttingTest> = (0..9).map(t).collect();
         let mut ctx = Context::of(&tests);
         ctx.bue_gate_c = Some((0..9).map(|i| 400.0 + 50.0 * i as f64).collect());
