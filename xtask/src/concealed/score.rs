@@ -74,6 +74,23 @@ pub fn wilson(k: usize, n: usize) -> (f64, f64) {
     ((centre - half).max(0.0), (centre + half).min(1.0))
 }
 
+/// A table of detection, claims and naming per bin of `key` ([0, 1), [1, 2), [2, 4), >= 4); a
+/// dataset whose key is `None` is in no bin.
+fn binned(s: &mut String, label: &str, mech: &[&Outcome], key: impl Fn(&Outcome) -> Option<f64>) {
+    let _ = writeln!(s, "\n| {label} | n | detected (verdict not `none`) | a mechanism claimed | named correctly |");
+    let _ = writeln!(s, "|---|---|---|---|---|");
+    for (lo, hi, bin) in
+        [(0.0, 1.0, "[0, 1)"), (1.0, 2.0, "[1, 2)"), (2.0, 4.0, "[2, 4)"), (4.0, f64::INFINITY, ">= 4")]
+    {
+        let rows: Vec<&&Outcome> = mech.iter().filter(|o| key(o).is_some_and(|e| (lo..hi).contains(&e))).collect();
+        let det = rows.iter().filter(|o| o.ok() && o.verdict.as_deref() != Some("none")).count();
+        let cl = rows.iter().filter(|o| o.claims()).count();
+        let nm = rows.iter().filter(|o| o.named()).count();
+        let n = rows.len();
+        let _ = writeln!(s, "| {bin} | {n} | {} | {} | {} |", pct(det, n), pct(cl, n), pct(nm, n));
+    }
+}
+
 fn pct(k: usize, n: usize) -> String {
     if n == 0 {
         "-".into()
@@ -186,48 +203,9 @@ pub fn summarise(family: &str, outcomes: &[Outcome]) -> (String, Headline) {
                 .map_or_else(|| "not available".to_string(), |v| format!("{v:.1}"))
         );
     }
-    // Naming against ENR.
-    let _ = writeln!(s, "\n| ENR | n | detected (verdict not `none`) | a mechanism claimed | named correctly |");
-    let _ = writeln!(s, "|---|---|---|---|---|");
-    for (lo, hi, label) in
-        [(0.0, 1.0, "[0, 1)"), (1.0, 2.0, "[1, 2)"), (2.0, 4.0, "[2, 4)"), (4.0, f64::INFINITY, ">= 4")]
-    {
-        let rows: Vec<&&Outcome> = mech.iter().filter(|o| (lo..hi).contains(&o.enr.unwrap_or(0.0))).collect();
-        let det = rows.iter().filter(|o| o.ok() && o.verdict.as_deref() != Some("none")).count();
-        let cl = rows.iter().filter(|o| o.claims()).count();
-        let nm = rows.iter().filter(|o| o.named()).count();
-        let _ = writeln!(
-            s,
-            "| {label} | {} | {} | {} | {} |",
-            rows.len(),
-            pct(det, rows.len()),
-            pct(cl, rows.len()),
-            pct(nm, rows.len())
-        );
-    }
-    // Naming against the ENR beyond the stated nuisance.
-    let _ = writeln!(
-        s,
-        "\n| ENR beyond nuisance | n | detected (verdict not `none`) | a mechanism claimed | named correctly |"
-    );
-    let _ = writeln!(s, "|---|---|---|---|---|");
-    for (lo, hi, label) in
-        [(0.0, 1.0, "[0, 1)"), (1.0, 2.0, "[1, 2)"), (2.0, 4.0, "[2, 4)"), (4.0, f64::INFINITY, ">= 4")]
-    {
-        let rows: Vec<&&Outcome> =
-            mech.iter().filter(|o| o.enr_beyond_nuisance.is_some_and(|e| (lo..hi).contains(&e))).collect();
-        let det = rows.iter().filter(|o| o.ok() && o.verdict.as_deref() != Some("none")).count();
-        let cl = rows.iter().filter(|o| o.claims()).count();
-        let nm = rows.iter().filter(|o| o.named()).count();
-        let _ = writeln!(
-            s,
-            "| {label} | {} | {} | {} | {} |",
-            rows.len(),
-            pct(det, rows.len()),
-            pct(cl, rows.len()),
-            pct(nm, rows.len())
-        );
-    }
+    // Naming against ENR, and against the ENR beyond the stated nuisance.
+    binned(&mut s, "ENR", &mech, |o| o.enr.or(Some(0.0)));
+    binned(&mut s, "ENR beyond nuisance", &mech, |o| o.enr_beyond_nuisance);
     let na = mech.iter().filter(|o| o.enr_beyond_nuisance.is_none()).count();
     if na > 0 {
         let _ = writeln!(s, "\n{na} mechanism datasets have no ENR beyond nuisance (a perturbed solve failed).");
