@@ -185,9 +185,8 @@ pub(crate) fn screen_and_refit(
     // refitted, false positives 1 -> 0 of 58). The calibrated null runs this same chain on every
     // replicate, so refitting more candidates tightens the level rather than inflating the
     // family-wise false-positive rate.
-    let chosen = screened;
     let mut out = Vec::new();
-    for s in chosen {
+    for s in screened {
         let (_, lo, hi, start) = fit::layout(pr.sim, &s.spec);
         let mut x0 = current.x.clone();
         x0.extend_from_slice(&start[current.k..]);

@@ -26,23 +26,23 @@ const STEP: f64 = 0.01;
 /// Cap on the coordinate-descent sweeps.
 const SWEEPS: usize = 500;
 
-/// A nuisance constant: name, stated relative half-range, and how to scale it in a copy.
-type Knob = (&'static str, f64, fn(&mut Consts, f64));
+/// A nuisance constant: its stated relative half-range and how to scale it in a copy.
+type Knob = (f64, fn(&mut Consts, f64));
 
-/// The nuisance constants.
+/// The nuisance constants, in the order A, B, n, C, m, rho, cp, K, tool K, eta, psi.
 fn knobs() -> [Knob; 11] {
     [
-        ("A", 0.05, |k, f| k.jc.a *= f),
-        ("B", 0.05, |k, f| k.jc.b *= f),
-        ("n", 0.05, |k, f| k.jc.n *= f),
-        ("C", 0.05, |k, f| k.jc.c *= f),
-        ("m", 0.05, |k, f| k.jc.m *= f),
-        ("rho", 0.05, |k, f| k.rho *= f),
-        ("cp", 0.05, |k, f| k.cp = (k.cp.0 * f, k.cp.1 * f)),
-        ("K", 0.05, |k, f| k.k = (k.k.0 * f, k.k.1 * f)),
-        ("K_tool", 0.05, |k, f| k.k_tool *= f),
-        ("eta", 0.03, |k, f| k.eta *= f),
-        ("psi", 0.03, |k, f| k.psi *= f),
+        (0.05, |k, f| k.jc.a *= f),
+        (0.05, |k, f| k.jc.b *= f),
+        (0.05, |k, f| k.jc.n *= f),
+        (0.05, |k, f| k.jc.c *= f),
+        (0.05, |k, f| k.jc.m *= f),
+        (0.05, |k, f| k.rho *= f),
+        (0.05, |k, f| k.cp = (k.cp.0 * f, k.cp.1 * f)),
+        (0.05, |k, f| k.k = (k.k.0 * f, k.k.1 * f)),
+        (0.05, |k, f| k.k_tool *= f),
+        (0.03, |k, f| k.eta *= f),
+        (0.03, |k, f| k.psi *= f),
     ]
 }
 
@@ -108,7 +108,7 @@ pub fn enr_beyond_nuisance(
         }
     }
     let (mut cols, mut lo, mut hi) = (Vec::new(), Vec::new(), Vec::new());
-    for (j, (_, range, scale)) in knobs().into_iter().enumerate() {
+    for (j, (range, scale)) in knobs().into_iter().enumerate() {
         let mut k = *truth;
         scale(&mut k, 1.0 + STEP);
         let mut col = Vec::with_capacity(d.len());
