@@ -16,7 +16,7 @@ use cutcal_model::CuttingTest;
 
 use crate::error::DiagnoseError;
 use crate::fit::{observations, Spec, OUTPUTS};
-use crate::instrument::{fit_artefacts, Artefact};
+use crate::instrument::{fit_artefact, fit_artefacts, Artefact};
 use crate::locate::locate;
 use crate::mechanism::{testable, Context, MechanismId};
 use crate::narrative::{explain, next_test, result_of};
@@ -230,7 +230,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                         let f = &fold[s + 1];
                         let d = f.k - fold[0].k;
                         let p = f_test(nb, f.rss, d, n_tr, f.k, one_sided(cands[i].id));
-                        let a = stats::aicc(f.rss, n_tr, f.k + grid_chosen(cands[i].id));
+                        let a = stats::aicc(f.objective(), n_tr, f.k + grid_chosen(cands[i].id));
                         if p < alpha_round && best.is_none_or(|(b, _)| a < b) {
                             best = Some((a, s + 1));
                         }
@@ -277,12 +277,36 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         let mut chosen = None;
         // Instrument explanations compete with the best mechanism (`crate::instrument`).
         let artefact = best.and_then(|b| {
-            let base_aicc = stats::aicc(current.rss, n, current.k);
+            let base_aicc = stats::aicc(current.objective(), n, current.k);
             fit_artefacts(&pr, &current, &current_spec)
                 .into_iter()
                 .filter(|a| a.aicc(n) - base_aicc - cands[b].daicc < cfg.ambiguity_delta_aicc)
                 .min_by(|x, y| x.aicc(n).total_cmp(&y.aicc(n)))
                 .map(|a| (b, a.clone(), a.aicc(n) - base_aicc))
+        });
+        // The artefact stops the claim only when the mechanism adds nothing significant on top of
+        // it: the mechanism refitted jointly with the artefact against the artefact alone, by the
+        // claim's own F-test and level (a nested comparison, as the refit's). A gain held at its
+        // bound while an edge force or a thermal trend is left in the residuals is no explanation.
+        let artefact = artefact.filter(|(b, a, _)| {
+            let c = &cands[*b];
+            let beyond = fit_artefact(&pr, &c.spec, &c.fit.x, a.artefact, a.g)
+                .map(|j| f_test(a.rss, j.rss, j.k.saturating_sub(a.k), n, j.k + grid_chosen(c.id), one_sided(c.id)));
+            match beyond {
+                Some(p) if p.is_finite() && p < alpha_round => {
+                    instrument_notes.push(format!(
+                        "Instrument check: {} explains the mismatch about as well as {}, but {} adds significantly \
+                         on top of it (p = {:.2e} < {:.4}), so the artefact does not stop the claim.",
+                        a.artefact.describe(),
+                        c.id.as_str(),
+                        c.id.as_str(),
+                        p,
+                        alpha_round
+                    ));
+                    false
+                }
+                _ => true,
+            }
         });
         if let Some((b, a, da)) = &artefact {
             cands[*b].reason = format!(

@@ -12,7 +12,7 @@ use nalgebra::{DMatrix, DVector};
 use crate::error::DiagnoseError;
 use crate::hooks::Hooks;
 use crate::mechanism::{self, Context, MechanismId};
-use crate::simulator::{Prediction, Simulator};
+use crate::simulator::{ParamSpec, Prediction, Simulator};
 
 /// The outputs: Fc, Ft, chip thickness and, where measured, the interface temperature rise.
 pub const OUTPUTS: [&str; NOUT] = ["fc", "ft", "tc", "t_int"];
@@ -195,6 +195,12 @@ impl Problem for FitProblem<'_> {
     }
 }
 
+/// Sum of the squared prior pseudo-residuals `(x - x0) / sd` of the baseline's nuisance at `x`.
+#[must_use]
+pub fn prior_penalty(params: &[ParamSpec], x: &[f64]) -> f64 {
+    params.iter().zip(x).filter_map(|(ps, v)| ps.prior_sd.map(|sd| ((v - ps.start) / sd).powi(2))).sum()
+}
+
 /// A fitted model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fit {
@@ -204,6 +210,9 @@ pub struct Fit {
     pub resid: Vec<f64>,
     /// Sum of squared data residuals.
     pub rss: f64,
+    /// Sum of squared prior pseudo-residuals of the nuisance (`(x - x0) / sd`): what the fit paid
+    /// to move the nuisance off its stated values.
+    pub penalty: f64,
     /// Number of parameters (baseline + mechanisms).
     pub k: usize,
     /// Predictions at `x`.
@@ -225,6 +234,14 @@ pub enum FitStatus {
     ShortRetry(usize),
     /// No free parameters.
     NothingToFit,
+}
+
+impl Fit {
+    /// The minimised objective: data residuals plus the nuisance's prior penalty.
+    #[must_use]
+    pub fn objective(&self) -> f64 {
+        self.rss + self.penalty
+    }
 }
 
 impl FitStatus {
@@ -295,7 +312,8 @@ pub fn fit(
     let preds = predict(sim, tests, spec, &spec.ctx, &x)?;
     let resid = residuals(obs, &preds, noise);
     let rss = resid.iter().map(|r| r * r).sum();
-    Ok(Fit { k: x.len(), x, resid, rss, preds, status })
+    let penalty = prior_penalty(sim.baseline_params(), &x);
+    Ok(Fit { k: x.len(), x, resid, rss, penalty, preds, status })
 }
 
 /// Central-difference Jacobian of the data residuals (rows) with respect to the parameters
@@ -349,4 +367,37 @@ pub fn project_out(j: &DMatrix<f64>, s: &DMatrix<f64>) -> DMatrix<f64> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_objective_adds_the_prior_penalty_of_the_nuisance_only() {
+        // Two nuisance knobs with priors and a free flow-stress scale without one: eta at 0.9 + 1 sd
+        // and psi at 0.9 - 2 sd add 1 + 4 = 5; the scale, however far it moves, adds nothing.
+        let nuisance = |name: &str, sd: Option<f64>| ParamSpec {
+            name: name.into(),
+            unit: "-".into(),
+            start: 0.9,
+            lower: 0.0,
+            upper: 2.0,
+            prior_sd: sd,
+        };
+        let params = [nuisance("eta", Some(0.0135)), nuisance("psi", Some(0.0135)), nuisance("scale", None)];
+        let x = [0.9 + 0.0135, 0.9 - 0.027, 1.7];
+        let penalty = prior_penalty(&params, &x);
+        assert!((penalty - 5.0).abs() < 1e-9, "{penalty}");
+        let fit = Fit {
+            x: x.to_vec(),
+            resid: vec![1.0, -2.0],
+            rss: 5.0,
+            penalty,
+            k: 3,
+            preds: Vec::new(),
+            status: FitStatus::Converged,
+        };
+        assert!((fit.objective() - 10.0).abs() < 1e-9);
+    }
 }

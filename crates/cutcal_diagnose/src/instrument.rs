@@ -55,6 +55,8 @@ pub(crate) struct ArtefactFit {
     pub(crate) g: f64,
     /// Sum of squared data residuals, noise units.
     pub(crate) rss: f64,
+    /// Sum of squared prior pseudo-residuals of the nuisance.
+    pub(crate) penalty: f64,
     /// Parameters of the fit (current model + 1).
     pub(crate) k: usize,
 }
@@ -62,7 +64,7 @@ pub(crate) struct ArtefactFit {
 impl ArtefactFit {
     /// AICc of the fit on `n` observations.
     pub(crate) fn aicc(&self, n: usize) -> f64 {
-        stats::aicc(self.rss, n, self.k)
+        stats::aicc(self.rss + self.penalty, n, self.k)
     }
 }
 
@@ -116,34 +118,53 @@ impl LmProblem for ArtefactProblem<'_> {
 /// Fits each artefact that this design can show on top of `current` (model `spec`). An artefact
 /// whose fit fails is left out (it can then not stop a claim; the mechanism's own checks stand).
 pub(crate) fn fit_artefacts(pr: &Problem<'_>, current: &Fit, spec: &Spec) -> Vec<ArtefactFit> {
-    let mut kinds = vec![(Artefact::Gain, vec![1.0; pr.tests.len()])];
-    if let Some(w) = &spec.ctx.wear_state {
-        kinds.push((Artefact::Drift, w.clone()));
+    let mut kinds = vec![Artefact::Gain];
+    if spec.ctx.wear_state.is_some() {
+        kinds.push(Artefact::Drift);
     }
+    kinds.into_iter().filter_map(|a| fit_artefact(pr, spec, &current.x, a, 0.0)).collect()
+}
+
+/// Fits one artefact jointly with model `spec` from the model parameters `x0` and artefact
+/// parameter `g0`. `None` when the design cannot show it (drift without a run order) or the fit
+/// fails.
+pub(crate) fn fit_artefact(
+    pr: &Problem<'_>,
+    spec: &Spec,
+    x0: &[f64],
+    artefact: Artefact,
+    g0: f64,
+) -> Option<ArtefactFit> {
+    let basis = match artefact {
+        Artefact::Gain => vec![1.0; pr.tests.len()],
+        Artefact::Drift => spec.ctx.wear_state.clone()?,
+    };
     let (mut names, mut lo, mut hi, _) = layout(pr.sim, spec);
     names.push("instrument.g".into());
     lo.push(-G_BOUND);
     hi.push(G_BOUND);
-    let Ok(bounds) = Bounds::new(names, lo, hi) else { return Vec::new() };
-    let mut start = current.x.clone();
-    start.push(0.0);
+    let bounds = Bounds::new(names, lo, hi).ok()?;
+    let mut start = x0.to_vec();
+    start.push(g0.clamp(-G_BOUND, G_BOUND));
     let opts = LmOptions {
         max_iterations: pr.cfg.max_iterations,
         gradient_tolerance: 1e-8,
         cost_tolerance: 1e-10,
         step_tolerance: 1e-9,
     };
-    kinds
-        .into_iter()
-        .filter_map(|(artefact, basis)| {
-            let problem = ArtefactProblem { pr, spec, basis };
-            let r = minimise(&problem, &bounds, &DVector::from_vec(start.clone()), &opts).ok()?;
-            let mut out = DVector::zeros(problem.residual_count());
-            problem.residuals(&r.params, &mut out).ok()?;
-            let rss: f64 = out.iter().take(pr.obs.len()).map(|v| v * v).sum();
-            rss.is_finite().then(|| ArtefactFit { artefact, g: r.params[r.params.len() - 1], rss, k: start.len() })
-        })
-        .collect()
+    let problem = ArtefactProblem { pr, spec, basis };
+    let r = minimise(&problem, &bounds, &DVector::from_vec(start.clone()), &opts).ok()?;
+    let mut out = DVector::zeros(problem.residual_count());
+    problem.residuals(&r.params, &mut out).ok()?;
+    let rss: f64 = out.iter().take(pr.obs.len()).map(|v| v * v).sum();
+    let penalty: f64 = out.iter().skip(pr.obs.len()).map(|v| v * v).sum();
+    (rss.is_finite() && penalty.is_finite()).then(|| ArtefactFit {
+        artefact,
+        g: r.params[r.params.len() - 1],
+        rss,
+        penalty,
+        k: start.len(),
+    })
 }
 
 #[cfg(test)]
@@ -154,7 +175,7 @@ mod tests {
     fn aicc_counts_the_artefact_parameter() {
         // AICc = n ln(RSS/n) + 2k + 2k(k+1)/(n-k-1) (Hurvich & Tsai 1989): for n = 20, RSS = 20,
         // k = 3 the first term is 0 and the rest 6 + 24/16 = 7.5.
-        let a = ArtefactFit { artefact: Artefact::Gain, g: 0.1, rss: 20.0, k: 3 };
+        let a = ArtefactFit { artefact: Artefact::Gain, g: 0.1, rss: 20.0, penalty: 0.0, k: 3 };
         assert!((a.aicc(20) - stats::aicc(20.0, 20, 3)).abs() < 1e-12);
         assert!((a.aicc(20) - 7.5).abs() < 1e-9, "{}", a.aicc(20));
     }

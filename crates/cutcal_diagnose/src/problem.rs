@@ -118,7 +118,7 @@ impl Problem<'_> {
                 )?;
                 let resid = fit::residuals(&te_obs, &preds, &self.cfg.noise);
                 // Keep the training fit (rss, k) and the held-out residuals/predictions.
-                fits.push(Fit { x: f.x, resid, rss: f.rss, k: f.k, preds, status: f.status });
+                fits.push(Fit { x: f.x, resid, rss: f.rss, penalty: f.penalty, k: f.k, preds, status: f.status });
             }
             per_fold.push(fits);
         }

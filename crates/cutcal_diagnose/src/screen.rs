@@ -203,10 +203,17 @@ pub(crate) fn screen_and_refit(
             continue;
         }
         let d = f.k - current.k;
+        // Significance asks whether the data demand the mechanism: the F-test is on the data
+        // residuals alone (the calibrated null, `crate::null`, sets its level). The AICc ranks
+        // rival explanations by everything each fit minimised, the data and the nuisance's prior
+        // penalty: a mechanism that explains the data while the nuisance stays near its stated
+        // values is preferred over one that needs the nuisance pushed to its bounds (Burnham &
+        // Anderson 2002, Sec 2.2: AIC on the maximised likelihood, which here includes the prior's
+        // pseudo-observations).
         let p = f_test(current.rss, f.rss, d, n, f.k, one_sided(s.id));
         let grid_now = current_spec.mechanisms.iter().map(|m| grid_chosen(*m)).sum::<usize>();
-        let daicc = stats::aicc(f.rss, n, f.k + grid_now + grid_chosen(s.id))
-            - stats::aicc(current.rss, n, current.k + grid_now);
+        let daicc = stats::aicc(f.objective(), n, f.k + grid_now + grid_chosen(s.id))
+            - stats::aicc(current.objective(), n, current.k + grid_now);
         let explained = if current.rss > 0.0 { 1.0 - f.rss / current.rss } else { 0.0 };
         // 95 % Wald interval of the mechanism parameters from the joint covariance.
         let cols: Vec<usize> = (0..f.k).collect();

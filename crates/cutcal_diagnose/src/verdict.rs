@@ -85,7 +85,15 @@ mod tests {
     }
 
     fn base() -> Fit {
-        Fit { x: vec![0.0], resid: vec![0.5, -0.5], rss: 0.5, k: 1, preds: Vec::new(), status: FitStatus::Converged }
+        Fit {
+            x: vec![0.0],
+            resid: vec![0.5, -0.5],
+            rss: 0.5,
+            penalty: 0.0,
+            k: 1,
+            preds: Vec::new(),
+            status: FitStatus::Converged,
+        }
     }
 
     #[test]
