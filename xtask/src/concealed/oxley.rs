@@ -207,10 +207,53 @@ fn solve_phi(c: &Cond, k: &Consts, mods: &Mods, c0: f64, delta: f64, hint: Optio
     state(c, k, mods, phi, c0, delta)
 }
 
-/// C0 solving sigma'_N = sigma_N at delta (or, with no sign change, the C0 nearest to it).
+/// The first sign change of `g` on [lo, hi] (coarse scan of `steps`) across which `g` is
+/// continuous, refined by bisection; capped. A sign change where `g` jumps (both ends still far from
+/// 0 once the bracket has shrunk to nothing) is a switch between solution branches of an inner
+/// closure, not a root, and is skipped.
+fn continuous_root(lo: f64, hi: f64, steps: usize, mut g: impl FnMut(f64) -> Option<f64>) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = (0..=steps)
+        .filter_map(|i| {
+            let x = lo + (hi - lo) * i as f64 / steps as f64;
+            g(x).map(|y| (x, y))
+        })
+        .collect();
+    for w in pts.windows(2) {
+        let ((mut a, mut ya), (mut b, mut yb)) = (w[0], w[1]);
+        if ya.signum() == yb.signum() {
+            continue;
+        }
+        let scale = ya.abs().max(yb.abs());
+        let mut failed = false;
+        for _ in 0..60 {
+            let m = 0.5 * (a + b);
+            let Some(ym) = g(m) else {
+                failed = true;
+                break;
+            };
+            if ym.signum() == ya.signum() {
+                a = m;
+                ya = ym;
+            } else {
+                b = m;
+                yb = ym;
+            }
+            if b - a < 1e-7 * (1.0 + b.abs()) {
+                break;
+            }
+        }
+        if !failed && ya.abs().min(yb.abs()) <= 1e-3 * scale {
+            return Some(0.5 * (a + b));
+        }
+    }
+    None
+}
+
+/// C0 solving sigma'_N = sigma_N at delta (or, with no sign change across which the gap is
+/// continuous, the C0 nearest to it).
 fn solve_c0(c: &Cond, k: &Consts, mods: &Mods, delta: f64, hint: Option<f64>) -> Option<State> {
     let gap = |c0: f64| solve_phi(c, k, mods, c0, delta, hint).map(|s| s.normal_gap);
-    if let Some(c0) = root(2.0, 10.0, 8, None, gap) {
+    if let Some(c0) = continuous_root(2.0, 10.0, 8, gap) {
         return solve_phi(c, k, mods, c0, delta, hint);
     }
     let mut best: Option<State> = None;
@@ -308,6 +351,26 @@ mod tests {
         assert!((near - 3.0).abs() < 1e-6, "{near}");
         let mid = root(0.0, 4.0, 16, Some(2.2), g).unwrap();
         assert!((mid - 2.0).abs() < 1e-6, "{mid}");
+    }
+
+    #[test]
+    fn a_jump_across_zero_is_not_taken_for_a_root() {
+        // g jumps from -1 to +1 at x = 1 (a branch switch) and crosses 0 continuously at x = 3.
+        let g = |x: f64| {
+            Some(if x < 1.0 {
+                -1.0
+            } else if x < 2.0 {
+                1.0
+            } else {
+                2.0 - (x - 2.0) * 2.0
+            })
+        };
+        // On [0, 4] with 8 steps: the first sign change is the jump (0.5 -> 1.0), skipped; then g
+        // goes 1, 2, ..., and crosses 0 at x = 3.
+        let r = continuous_root(0.0, 4.0, 8, g).unwrap();
+        assert!((r - 3.0).abs() < 1e-6, "{r}");
+        // Only a jump: no root.
+        assert!(continuous_root(0.0, 2.0, 8, |x: f64| Some(if x < 1.0 { -1.0 } else { 1.0 })).is_none());
     }
 
     #[test]
