@@ -50,6 +50,8 @@ pub struct ConcealedOptions {
     pub markdown: Option<PathBuf>,
     /// Worker threads.
     pub threads: usize,
+    /// Force this work material on every dataset (the material-spread check), by name.
+    pub material: Option<String>,
 }
 
 /// Kinds of the `n` datasets of a family, in a seeded shuffled order: nulls, each mechanism and each
@@ -127,7 +129,8 @@ fn one(
         loco_after: None,
         seconds: 0.0,
     };
-    let ds = match dataset::generate(family == "b", index, hidden, rank, opts.seed) {
+    let material = opts.material.as_deref().and_then(material::by_name);
+    let ds = match dataset::generate(family == "b", index, hidden, rank, opts.seed, material) {
         Ok(d) => d,
         Err(e) => {
             o.reason = e;
@@ -203,6 +206,11 @@ pub fn run(opts: &ConcealedOptions) -> Result<()> {
     if opts.datasets == 0 {
         bail!("--datasets must be at least 1");
     }
+    if let Some(m) = opts.material.as_deref() {
+        if material::by_name(m).is_none() {
+            bail!("--material: no material named `{m}` (AISI1045, AISI4340, Ti6Al4V, AA2024-T351, OFHC-Cu, Nickel200)");
+        }
+    }
     std::fs::create_dir_all(&opts.out).with_context(|| format!("creating {}", opts.out.display()))?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(opts.threads.max(1)).build()?;
     let t0 = Instant::now();
@@ -252,7 +260,7 @@ mod tests {
         let p = Path::new("t.csv");
         for fam_b in [false, true] {
             for (i, hidden) in ["null", "edge_ploughing", "size_effect", "decoy:gain"].iter().enumerate() {
-                let d = dataset::generate(fam_b, i, hidden, 0, 11).unwrap();
+                let d = dataset::generate(fam_b, i, hidden, 0, 11, None).unwrap();
                 // The CLI's readers accept both files.
                 let tests = cutcal_io::tests_csv::parse_tests(p, &d.recordings).unwrap();
                 let sims = cutcal_io::simulation_csv::parse_simulation(p, &d.simulation).unwrap();

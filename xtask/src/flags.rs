@@ -51,6 +51,10 @@ pub struct ConcealedFlags {
     /// Worker threads.
     #[arg(long, default_value_t = 2)]
     pub threads: usize,
+    /// Material-spread check: force one work material on every dataset (AISI1045, AISI4340,
+    /// Ti6Al4V, AA2024-T351, OFHC-Cu, Nickel200). The benchmark's figures use the default draw.
+    #[arg(long)]
+    pub material: Option<String>,
 }
 
 /// Options of `cargo xtask pipeline`.

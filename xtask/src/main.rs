@@ -38,6 +38,7 @@ fn main() -> ExitCode {
             out: f.out,
             markdown: f.markdown,
             threads: f.threads,
+            material: f.material,
         }),
     };
     match result {

@@ -120,45 +120,57 @@ fn mode_a(
         .context("a measured test has no simulation row")?;
     let conditions = cutcal_diagnose::condition_groups(measured).len();
     let mut cfg = Config::standard("A");
-    // The shadow's material: the one given, else the generic class that matches the external
-    // simulation best (cutcal_diagnose::classes).
-    let (mat, nominal, generic) = match material {
+    // The shadow's material: the one given, else the generic class whose fitted shadow matches the
+    // external simulation best (cutcal_diagnose::classes).
+    let built = match material {
         Some(mf) => {
             let nominal = match jc {
                 Some(p) => load_jc(p)?,
                 None if mf.bounds.is_some() => bounds_centre(mf)?,
                 None => MaterialClass::Steel.material().1,
             };
-            (mf.material.clone(), nominal, None)
+            ShadowSimulation::build(&mf.material, nominal, measured, &external, conditions >= 3)
         }
         None => {
-            let ranked = classes::rank(measured, &external);
-            let (m, class_jc) = ranked[0].class.material();
-            let why: Vec<String> = ranked
-                .iter()
-                .map(|c| {
-                    format!(
-                        "{:?}: {} of {} tests solved, misfit {}",
-                        c.class,
-                        c.solved,
-                        measured.len(),
-                        c.rms.map_or("not available (none solved)".to_string(), |r| format!("{:.1} %", 100.0 * r))
-                    )
-                })
-                .collect();
-            let nominal = match jc {
-                Some(p) => load_jc(p)?,
-                None => class_jc,
-            };
-            (m, nominal, Some(why.join("; ")))
+            let nominal = jc.map(load_jc).transpose()?;
+            match classes::best_shadow(measured, &external, conditions >= 3, nominal) {
+                Ok((ranked, shadows)) => {
+                    let why: Vec<String> = ranked
+                        .iter()
+                        .map(|c| {
+                            let fitted = shadows.iter().find(|s| s.class == c.class).map_or(
+                                "shadow not built".to_string(),
+                                |s| format!("fitted shadow RMS {:.1} %", s.shadow.summary().rms_pct),
+                            );
+                            format!(
+                                "{:?}: {} of {} tests solved, misfit {}, {fitted}",
+                                c.class,
+                                c.solved,
+                                measured.len(),
+                                c.rms.map_or("not available (none solved)".to_string(), |r| format!(
+                                    "{:.1} %",
+                                    100.0 * r
+                                )),
+                            )
+                        })
+                        .collect();
+                    cfg.simulator_notes.push(format!(
+                        "no --material: generic class chosen from the simulation: {:?}, the fewest unsolved tests \
+                         and then the smallest fitted RMS ({})",
+                        shadows[0].class,
+                        why.join("; ")
+                    ));
+                    shadows.into_iter().next().map(|s| s.shadow).ok_or_else(|| {
+                        cutcal_diagnose::DiagnoseError::Inconsistent("no material class gave a shadow".into())
+                    })
+                }
+                Err(e) => Err(e),
+            }
         }
     };
-    match ShadowSimulation::build(&mat, nominal, measured, &external, conditions >= 3) {
+    match built {
         Ok(sim) => {
             let sm = sim.summary();
-            if let Some(why) = &generic {
-                cfg.simulator_notes.push(format!("no --material: generic class chosen from the simulation ({why})"));
-            }
             cfg.simulator_notes.push(format!(
                 "shadow of the external simulation: cutcal's extended Oxley model on {} thermal data, JC A {:.0} MPa, \
                  B {:.0} MPa, n {:.3}, C {:.4}, m {:.2} fitted to it (RMS {:.1} %{}{})",

@@ -18,7 +18,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 
-use super::material::{Cond, Consts, Solution, MATERIALS};
+use super::material::{Cond, Consts, Material, Solution, MATERIALS};
 use super::mechanism::{self, Mods, Shape};
 use super::{detectable, merchant, oxley};
 
@@ -97,8 +97,7 @@ struct Design {
     run_order: Vec<usize>, // run position of each row (design order)
 }
 
-fn design(rng: &mut ChaCha8Rng, mat: usize, low_speed: bool) -> Design {
-    let m = &MATERIALS[mat];
+fn design(rng: &mut ChaCha8Rng, m: &Material, low_speed: bool) -> Design {
     let vmax = if low_speed { m.speeds.1.min(200.0) } else { m.speeds.1 };
     let vlo = rng.gen_range(m.speeds.0..(m.speeds.0 * 3.0).min(vmax / 2.0));
     let vhi = rng.gen_range((vlo * 2.0).min(vmax)..=vmax);
@@ -192,14 +191,25 @@ pub fn enr(with: &[[f64; 4]], without: &[[f64; 4]], noise: &[f64; 4], outs: usiz
 
 /// Generates dataset `index` of `family_b`, hiding `hidden`; `rank` is its rank among datasets of the
 /// same kind (sets the target ENR).
-pub fn generate(family_b: bool, index: usize, hidden: &str, rank: usize, seed: u64) -> Result<Dataset, String> {
+///
+/// `material` forces the work material (the material-spread check); `None` draws it from
+/// [`MATERIALS`].
+pub fn generate(
+    family_b: bool,
+    index: usize,
+    hidden: &str,
+    rank: usize,
+    seed: u64,
+    material: Option<&'static Material>,
+) -> Result<Dataset, String> {
     let mut rng = ChaCha8Rng::seed_from_u64(
         seed ^ (index as u64 + if family_b { 1 << 32 } else { 0 }).wrapping_mul(0x9E37_79B9_7F4A_7C15),
     );
-    let mat = rng.gen_range(0..MATERIALS.len());
+    let drawn = rng.gen_range(0..MATERIALS.len());
+    let mat = material.unwrap_or(&MATERIALS[drawn]);
     let d = design(&mut rng, mat, hidden == "built_up_edge");
     let n = d.conds.len();
-    let nominal = Consts::nominal(&MATERIALS[mat]);
+    let nominal = Consts::nominal(mat);
     let truth_k = nominal.perturbed(&mut rng);
     let shape = Shape::draw(&mut rng);
     let noise =
@@ -409,7 +419,7 @@ pub fn generate(family_b: bool, index: usize, hidden: &str, rank: usize, seed: u
         index,
         family: if family_b { "b" } else { "a" }.into(),
         hidden: hidden.into(),
-        material: MATERIALS[mat].name.into(),
+        material: mat.name.into(),
         conditions: n,
         noise,
         target_enr: target,

@@ -113,6 +113,47 @@ pub const MATERIALS: [Material; 3] = [
     },
 ];
 
+/// Materials of the material-spread check only (`cargo xtask concealed --material NAME`): the
+/// benchmark's own datasets draw from [`MATERIALS`]; these test the detector on work materials it
+/// has no generic class for (copper, nickel) or whose class it has never been scored on
+/// (aluminium). JC sets of Johnson & Cook 1983 (Proc. 7th Int. Symp. Ballistics, 541-547, Table 1;
+/// Tm converted to degC); room-temperature rho, cp and K of the ASM Handbook (Vol. 2: 2024-T351,
+/// OFHC copper C10200, Nickel 200), taken constant.
+pub const SPREAD_MATERIALS: [Material; 3] = [
+    Material {
+        name: "AA2024-T351",
+        jc: jc(265.0, 426.0, 0.34, 0.015, 1.0, 502.0, 25.0),
+        rho: 2780.0,
+        cp: (875.0, 0.0),
+        k: (121.0, 0.0),
+        speeds: (60.0, 600.0),
+        feeds: (0.05, 0.3),
+    },
+    Material {
+        name: "OFHC-Cu",
+        jc: jc(90.0, 292.0, 0.31, 0.025, 1.09, 1083.0, 25.0),
+        rho: 8960.0,
+        cp: (385.0, 0.0),
+        k: (391.0, 0.0),
+        speeds: (50.0, 400.0),
+        feeds: (0.05, 0.3),
+    },
+    Material {
+        name: "Nickel200",
+        jc: jc(163.0, 648.0, 0.33, 0.006, 1.44, 1453.0, 25.0),
+        rho: 8890.0,
+        cp: (456.0, 0.0),
+        k: (70.2, 0.0),
+        speeds: (30.0, 200.0),
+        feeds: (0.05, 0.25),
+    },
+];
+
+/// A material of [`MATERIALS`] or [`SPREAD_MATERIALS`] by name.
+pub fn by_name(name: &str) -> Option<&'static Material> {
+    MATERIALS.iter().chain(SPREAD_MATERIALS.iter()).find(|m| m.name.eq_ignore_ascii_case(name))
+}
+
 /// Every constant one forward solve needs (nominal, or perturbed by the nuisance).
 #[derive(Debug, Clone, Copy, serde::Serialize)]
 pub struct Consts {
