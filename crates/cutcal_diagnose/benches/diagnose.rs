@@ -6,6 +6,9 @@
 //! Jaspers & Dautzenberg 2002 JC set; the recordings carry a 25 um edge (Waldorf et al. 1998) and a
 //! deterministic +-2 % pattern. The shadow runs on generic steel (AISI 1045, Lalwani 2009).
 //!
+//! A second case runs the same data without a material file: every generic class's shadow is
+//! built and fitted and the best one kept (`classes::best_shadow`), as the CLI does.
+//!
 //! Method and last numbers: `benches/README.md`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -51,6 +54,15 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             let sim = ShadowSimulation::build(&steel, jc, &tests, &ext, true).expect("shadow builds");
             diagnose(&sim, &tests, &cfg).expect("diagnosis runs")
+        })
+    });
+    // The main Mode A case: no material file, so every generic class's shadow is built and fitted
+    // and the best fitted one kept (`classes::best_shadow`) before the diagnosis.
+    g.bench_function("mode_a_15_conditions_no_material_class_choice", |b| {
+        b.iter(|| {
+            let (_, shadows) =
+                cutcal_diagnose::classes::best_shadow(&tests, &ext, true, None).expect("a class's shadow builds");
+            diagnose(&shadows[0].shadow, &tests, &cfg).expect("diagnosis runs")
         })
     });
     g.finish();

@@ -138,10 +138,12 @@ fn mode_a(
                     let why: Vec<String> = ranked
                         .iter()
                         .map(|c| {
-                            let fitted = shadows.iter().find(|s| s.class == c.class).map_or(
-                                "shadow not built".to_string(),
-                                |s| format!("fitted shadow RMS {:.1} %", s.shadow.summary().rms_pct),
-                            );
+                            let fitted = shadows
+                                .iter()
+                                .find(|s| s.class == c.class)
+                                .map_or("shadow not built".to_string(), |s| {
+                                    format!("fitted shadow RMS {:.1} %", s.shadow.summary().rms_pct)
+                                });
                             format!(
                                 "{:?}: {} of {} tests solved, misfit {}, {fitted}",
                                 c.class,
