@@ -60,9 +60,9 @@ fn bench(c: &mut Criterion) {
     // and the best fitted one kept (`classes::best_shadow`) before the diagnosis.
     g.bench_function("mode_a_15_conditions_no_material_class_choice", |b| {
         b.iter(|| {
-            let (_, shadows) =
+            let choice =
                 cutcal_diagnose::classes::best_shadow(&tests, &ext, true, None).expect("a class's shadow builds");
-            diagnose(&shadows[0].shadow, &tests, &cfg).expect("diagnosis runs")
+            diagnose(&choice.shadow, &tests, &cfg).expect("diagnosis runs")
         })
     });
     g.finish();

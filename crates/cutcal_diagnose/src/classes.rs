@@ -156,13 +156,17 @@ pub fn rank(tests: &[CuttingTest], external: &[Prediction]) -> Vec<ClassScore> {
     scores
 }
 
-/// A class's shadow, built and fitted (`ShadowSimulation::build`), with its score.
+/// The Mode A shadow chosen among the generic classes ([`best_shadow`]).
 #[derive(Debug)]
-pub struct ClassShadow {
-    /// The class.
+pub struct ShadowChoice {
+    /// Every class's pre-fit score, best first ([`rank`]).
+    pub ranked: Vec<ClassScore>,
+    /// The class kept.
     pub class: MaterialClass,
-    /// Its shadow.
+    /// Its shadow, built and fitted.
     pub shadow: crate::shadow::ShadowSimulation,
+    /// Each class whose shadow was built: its unsolved tests and fitted RMS (%), best first.
+    pub fitted: Vec<(MaterialClass, usize, f64)>,
 }
 
 /// The shadow of the class that matches `external` best *after* the shadow fit: every class whose
@@ -171,8 +175,7 @@ pub struct ClassShadow {
 /// smallest fitted RMS is kept. The pre-fit ranking alone can mislead: a class whose nominal set
 /// is closest at one common force level can be the one whose fit fails once the level is moved
 /// into its JC set (a steel's thermal data under an aluminium's flow stress leave Oxley's sticking
-/// condition without a solution; the material-spread check of `docs/concealed.md`). Returns the
-/// ranking and the shadows built, best first.
+/// condition without a solution; the material-spread check of `docs/concealed.md`).
 ///
 /// # Errors
 /// The error of the best-ranked class when no class's shadow can be built.
@@ -181,9 +184,9 @@ pub fn best_shadow(
     external: &[Prediction],
     level_free: bool,
     nominal_jc: Option<JcParams>,
-) -> Result<(Vec<ClassScore>, Vec<ClassShadow>), crate::DiagnoseError> {
+) -> Result<ShadowChoice, crate::DiagnoseError> {
     let ranked = rank(tests, external);
-    let mut built = Vec::new();
+    let mut built: Vec<(MaterialClass, crate::shadow::ShadowSimulation)> = Vec::new();
     let mut first_err = None;
     for c in &ranked {
         if 2 * c.solved < tests.len() && !built.is_empty() {
@@ -191,21 +194,22 @@ pub fn best_shadow(
         }
         let (m, class_jc) = c.class.material();
         match crate::shadow::ShadowSimulation::build(&m, nominal_jc.unwrap_or(class_jc), tests, external, level_free) {
-            Ok(shadow) => built.push(ClassShadow { class: c.class, shadow }),
+            Ok(shadow) => built.push((c.class, shadow)),
             Err(e) => {
                 first_err.get_or_insert(e);
             }
         }
     }
-    if built.is_empty() {
-        return Err(first_err.unwrap_or_else(|| crate::DiagnoseError::Inconsistent("no material class".into())));
-    }
     // Stable: among equals the pre-fit ranking decides.
-    built.sort_by(|a, b| {
-        let (sa, sb) = (a.shadow.summary(), b.shadow.summary());
+    built.sort_by(|(_, a), (_, b)| {
+        let (sa, sb) = (a.summary(), b.summary());
         sa.unsolved.len().cmp(&sb.unsolved.len()).then(sa.rms_pct.total_cmp(&sb.rms_pct))
     });
-    Ok((ranked, built))
+    let fitted = built.iter().map(|(c, s)| (*c, s.summary().unsolved.len(), s.summary().rms_pct)).collect();
+    let Some((class, shadow)) = built.into_iter().next() else {
+        return Err(first_err.unwrap_or_else(|| crate::DiagnoseError::Inconsistent("no material class".into())));
+    };
+    Ok(ShadowChoice { ranked, class, shadow, fitted })
 }
 
 #[cfg(test)]
@@ -230,17 +234,17 @@ mod tests {
         let o = OxleyOptions::wide();
         let ext: Vec<Prediction> =
             tests.iter().map(|t| oxley_with_hooks(&m, &jc, t, &Hooks::NEUTRAL, &o).unwrap()).collect();
-        let (ranked, built) = best_shadow(&tests, &ext, true, None).unwrap();
-        assert_eq!(ranked.len(), 3);
-        let best = built[0].shadow.summary();
-        for other in &built[1..] {
-            let s = other.shadow.summary();
-            assert!(best.unsolved.len() <= s.unsolved.len());
-            if best.unsolved.len() == s.unsolved.len() {
-                assert!(best.rms_pct <= s.rms_pct, "{} > {}", best.rms_pct, s.rms_pct);
+        let choice = best_shadow(&tests, &ext, true, None).unwrap();
+        assert_eq!(choice.ranked.len(), 3);
+        let best = choice.shadow.summary();
+        assert_eq!(choice.fitted[0], (choice.class, best.unsolved.len(), best.rms_pct));
+        for &(_, unsolved, rms) in &choice.fitted[1..] {
+            assert!(best.unsolved.len() <= unsolved);
+            if best.unsolved.len() == unsolved {
+                assert!(best.rms_pct <= rms, "{} > {rms}", best.rms_pct);
             }
         }
-        assert_eq!(built[0].class, MaterialClass::Aluminium, "{ranked:?}");
+        assert_eq!(choice.class, MaterialClass::Aluminium, "{:?}", choice.ranked);
         assert!(best.rms_pct < 2.0, "{}", best.rms_pct);
     }
 

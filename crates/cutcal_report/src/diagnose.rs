@@ -133,41 +133,36 @@ fn mode_a(
         }
         None => {
             let nominal = jc.map(load_jc).transpose()?;
-            match classes::best_shadow(measured, &external, conditions >= 3, nominal) {
-                Ok((ranked, shadows)) => {
-                    let why: Vec<String> = ranked
-                        .iter()
-                        .map(|c| {
-                            let fitted = shadows
-                                .iter()
-                                .find(|s| s.class == c.class)
-                                .map_or("shadow not built".to_string(), |s| {
-                                    format!("fitted shadow RMS {:.1} %", s.shadow.summary().rms_pct)
-                                });
-                            format!(
-                                "{:?}: {} of {} tests solved, misfit {}, {fitted}",
-                                c.class,
-                                c.solved,
-                                measured.len(),
-                                c.rms.map_or("not available (none solved)".to_string(), |r| format!(
-                                    "{:.1} %",
-                                    100.0 * r
-                                )),
-                            )
-                        })
-                        .collect();
-                    cfg.simulator_notes.push(format!(
-                        "no --material: generic class chosen from the simulation: {:?}, the fewest unsolved tests \
-                         and then the smallest fitted RMS ({})",
-                        shadows[0].class,
-                        why.join("; ")
-                    ));
-                    shadows.into_iter().next().map(|s| s.shadow).ok_or_else(|| {
-                        cutcal_diagnose::DiagnoseError::Inconsistent("no material class gave a shadow".into())
+            classes::best_shadow(measured, &external, conditions >= 3, nominal).map(|choice| {
+                let why: Vec<String> = choice
+                    .ranked
+                    .iter()
+                    .map(|c| {
+                        let fitted = choice
+                            .fitted
+                            .iter()
+                            .find(|f| f.0 == c.class)
+                            .map_or("shadow not built".to_string(), |(_, _, rms)| {
+                                format!("fitted shadow RMS {rms:.1} %")
+                            });
+                        let misfit =
+                            c.rms.map_or("not available (none solved)".to_string(), |r| format!("{:.1} %", 100.0 * r));
+                        format!(
+                            "{:?}: {} of {} tests solved, misfit {misfit}, {fitted}",
+                            c.class,
+                            c.solved,
+                            measured.len()
+                        )
                     })
-                }
-                Err(e) => Err(e),
-            }
+                    .collect();
+                cfg.simulator_notes.push(format!(
+                    "no --material: generic class chosen from the simulation: {:?}, the fewest unsolved tests and \
+                     then the smallest fitted RMS ({})",
+                    choice.class,
+                    why.join("; ")
+                ));
+                choice.shadow
+            })
         }
     };
     match built {
