@@ -4,8 +4,8 @@
 //! Acceptance of a mechanism needs all of: (1) an F-test of the joint refit below the level
 //! calibrated on the data's own null (`crate::null`: parametric bootstrap through the whole screen
 //! and refit; the family level divided by the number of mechanisms, Bonferroni, only when no
-//! replicates are asked for; one-sided halving for a one-sided single parameter, Self & Liang
-//! 1987); (2) a lower leave-one-condition-out error than the baseline, for
+//! replicates are asked for; the chi-bar-square mixture for parameters whose off value sits on a
+//! bound, Self & Liang 1987); (2) a lower leave-one-condition-out error than the baseline, for
 //! the mechanism and for the nested selection pipeline; (3) a 95 % interval that excludes the
 //! mechanism's off value with the estimate off its far bound; (4) no rival within 2 AICc whose
 //! fitted correction has a cosine above 0.9 with it. In-sample improvement alone never suffices.
@@ -22,7 +22,7 @@ use crate::mechanism::{testable, Context, MechanismId};
 use crate::narrative::{explain, next_test, result_of};
 use crate::problem::{condition_groups, loco_of, rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
-use crate::screen::{cosine, f_test, grid_chosen, one_sided, screen_and_refit};
+use crate::screen::{boundary_params, cosine, f_test, grid_chosen, screen_and_refit};
 use crate::simulator::Simulator;
 use crate::stats;
 use crate::verdict::decide;
@@ -229,7 +229,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                         }
                         let f = &fold[s + 1];
                         let d = f.k - fold[0].k;
-                        let p = f_test(nb, f.rss, d, n_tr, f.k, one_sided(cands[i].id));
+                        let p = f_test(nb, f.rss, d, n_tr, f.k, boundary_params(cands[i].id));
                         let a = stats::aicc(f.objective(), n_tr, f.k + grid_chosen(cands[i].id));
                         if p < alpha_round && best.is_none_or(|(b, _)| a < b) {
                             best = Some((a, s + 1));
@@ -291,7 +291,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         let artefact = artefact.filter(|(b, a, _)| {
             let c = &cands[*b];
             let beyond = fit_artefact(&pr, &c.spec, &c.fit.x, a.artefact, a.g)
-                .map(|j| f_test(a.rss, j.rss, j.k.saturating_sub(a.k), n, j.k + grid_chosen(c.id), one_sided(c.id)));
+                .map(|j| f_test(a.rss, j.rss, j.k.saturating_sub(a.k), n, j.k + grid_chosen(c.id), boundary_params(c.id)));
             match beyond {
                 Some(p) if p.is_finite() && p < alpha_round => {
                     instrument_notes.push(format!(
