@@ -18,7 +18,7 @@ use crate::error::DiagnoseError;
 use crate::fit::{observations, Spec, OUTPUTS};
 use crate::instrument::{fit_artefact, fit_artefacts, Artefact};
 use crate::locate::locate;
-use crate::mechanism::{testable, Context, MechanismId};
+use crate::mechanism::{info, testable, Context, MechanismId};
 use crate::narrative::{explain, next_test, result_of};
 use crate::problem::{condition_groups, loco_of, rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
@@ -168,7 +168,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     let mut ambiguous: Vec<MechanismId> = Vec::new();
     let mut first_round: Vec<Candidate> = Vec::new();
     let mut nested_loco: Option<Loco> = base_loco.clone();
-    let mut instrument_notes: Vec<String> = Vec::new();
+    let mut notes: Vec<String> = Vec::new();
 
     for round in 0..cap {
         let remaining: Vec<MechanismId> =
@@ -196,7 +196,15 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         for c in &mut cands {
             c.significant = c.p.is_finite() && c.p < alpha_round;
         }
+        // A later round does not claim a confounder of a mechanism already claimed (either one
+        // listed in the other's `confounders`): their signatures share directions, so what is
+        // left after the first claim is as likely the first mechanism's true form differing from
+        // the library's as a second mechanism, and the data cannot apportion the two.
+        let confounded_with = |id: MechanismId| {
+            accepted.iter().copied().find(|&a| info(a).confounders.contains(&id) || info(id).confounders.contains(&a))
+        };
         // Held-out check for the significant ones, with the nested selection pipeline.
+        let nested_before = nested_loco.clone();
         let sig: Vec<usize> = (0..cands.len()).filter(|&i| cands[i].significant && cands[i].ci_ok).collect();
         if !sig.is_empty() {
             let mut specs: Vec<(&Spec, &[f64])> = vec![(&current_spec, current.x.as_slice())];
@@ -216,7 +224,10 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 let before = current_loco.as_ref().map(|l| l.rss);
                 let own_ok: Vec<bool> = sig
                     .iter()
-                    .map(|&i| matches!((&cands[i].loco_after, before), (Some(a), Some(b)) if a.rss < b))
+                    .map(|&i| {
+                        matches!((&cands[i].loco_after, before), (Some(a), Some(b)) if a.rss < b)
+                            && confounded_with(cands[i].id).is_none()
+                    })
                     .collect();
                 let mut resid = Vec::new();
                 for fold in &folds {
@@ -264,6 +275,27 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 }
             };
         }
+        for c in &mut cands {
+            if let Some(a) = confounded_with(c.id).filter(|_| c.reason.starts_with("passes")) {
+                notes.push(format!(
+                    "{} also improves the fit on top of {} (p = {:.2e}), but the library lists the two as \
+                     confounded, so it is not claimed as a second mechanism: what remains may be {}'s true form. \
+                     To separate them: {}.",
+                    c.id.as_str(),
+                    a.as_str(),
+                    c.p,
+                    a.as_str(),
+                    info(c.id).separate_by
+                ));
+                c.reason = format!(
+                    "confounded with {}, claimed in an earlier round: not claimed as a second mechanism (the \
+                     remaining misfit may be {}'s true form; to separate them: {})",
+                    a.as_str(),
+                    a.as_str(),
+                    info(c.id).separate_by
+                );
+            }
+        }
         let eligible: Vec<usize> = (0..cands.len())
             .filter(|&i| {
                 let c = &cands[i];
@@ -271,6 +303,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                     && c.ci_ok
                     && matches!((&c.loco_after, before_rss), (Some(a), Some(b)) if a.rss < b)
                     && nested_ok
+                    && confounded_with(c.id).is_none()
             })
             .collect();
         let best = eligible.iter().copied().min_by(|&a, &b| cands[a].daicc.total_cmp(&cands[b].daicc));
@@ -294,7 +327,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 .map(|j| f_test(a.rss, j.rss, j.k.saturating_sub(a.k), n, j.k + grid_chosen(c.id), boundary_params(c.id)));
             match beyond {
                 Some(p) if p.is_finite() && p < alpha_round => {
-                    instrument_notes.push(format!(
+                    notes.push(format!(
                         "Instrument check: {} explains the mismatch about as well as {}, but {} adds significantly \
                          on top of it (p = {:.2e} < {:.4}), so the artefact does not stop the claim.",
                         a.artefact.describe(),
@@ -316,7 +349,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 cands[*b].daicc,
                 a.g.exp()
             );
-            instrument_notes.push(format!(
+            notes.push(format!(
                 "Instrument check: {} explains the mismatch at least as well as {} (dAICc {:+.1} against {:+.1}), so no \
                  physics is claimed; \
                  check the dynamometer calibration{}.",
@@ -369,6 +402,10 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             None => {
                 if round == 0 {
                     first_round = cands;
+                } else {
+                    // The round claimed nothing: the held-out error of the selection is the previous
+                    // round's (this round's nested pipeline chose among candidates not claimed).
+                    nested_loco = nested_before;
                 }
                 break;
             }
@@ -418,7 +455,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         next_test(&pr, verdict, &accepted, &ambiguous, &first_round, &base, &base_spec, &current, &current_spec);
     let mut explanation =
         explain(verdict, &mismatch, &accepted, &ambiguous, &first_round, &fit_summary, conditions, &global);
-    for note in &instrument_notes {
+    for note in &notes {
         explanation.push(' ');
         explanation.push_str(note);
     }
