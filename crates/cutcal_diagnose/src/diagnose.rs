@@ -16,6 +16,7 @@ use cutcal_model::CuttingTest;
 
 use crate::error::DiagnoseError;
 use crate::fit::{observations, Spec, OUTPUTS};
+use crate::heldout::heldout_round;
 use crate::instrument::{fit_artefact, fit_artefacts, Artefact};
 use crate::locate::locate;
 use crate::mechanism::{info, testable, Context, MechanismId};
@@ -207,49 +208,12 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         let nested_before = nested_loco.clone();
         let sig: Vec<usize> = (0..cands.len()).filter(|&i| cands[i].significant && cands[i].ci_ok).collect();
         if !sig.is_empty() {
-            let mut specs: Vec<(&Spec, &[f64])> = vec![(&current_spec, current.x.as_slice())];
-            for &i in &sig {
-                specs.push((&cands[i].spec, cands[i].fit.x.as_slice()));
-            }
-            if let Some(folds) = pr.loco(&specs)? {
-                for (s, &i) in sig.iter().enumerate() {
-                    cands[i].loco_after = Some(loco_of(&folds, s + 1));
-                }
-                // Nested pipeline: inside each fold, re-run the significance decision on the fold's
-                // fits and predict the held-out condition with the fold's choice. The fold chooses
-                // among the candidates that pass their own held-out check on the whole data (as
-                // the decision below does): a candidate that extrapolates badly cannot be chosen
-                // on the data, so it must not sink the pipeline's check either (a stated, small
-                // optimism, like the candidate set taken from the full-data screen).
-                let before = current_loco.as_ref().map(|l| l.rss);
-                let own_ok: Vec<bool> = sig
-                    .iter()
-                    .map(|&i| {
-                        matches!((&cands[i].loco_after, before), (Some(a), Some(b)) if a.rss < b)
-                            && confounded_with(cands[i].id).is_none()
-                    })
-                    .collect();
-                let mut resid = Vec::new();
-                for fold in &folds {
-                    let nb = fold[0].rss;
-                    let n_tr = n - fold[0].resid.len();
-                    let mut best: Option<(f64, usize)> = None;
-                    for (s, &i) in sig.iter().enumerate() {
-                        if !own_ok[s] {
-                            continue;
-                        }
-                        let f = &fold[s + 1];
-                        let d = f.k - fold[0].k;
-                        let p = f_test(nb, f.rss, d, n_tr, f.k, boundary_params(cands[i].id));
-                        let a = stats::aicc(f.objective(), n_tr, f.k + grid_chosen(cands[i].id));
-                        if p < alpha_round && best.is_none_or(|(b, _)| a < b) {
-                            best = Some((a, s + 1));
-                        }
-                    }
-                    resid.extend(fold[best.map(|b| b.1).unwrap_or(0)].resid.iter().copied());
-                }
-                let rss = resid.iter().map(|r| r * r).sum();
-                nested_loco = Some(Loco { resid, rss });
+            let refused = |id: MechanismId| confounded_with(id).is_some();
+            let current_pair = (&current_spec, &current);
+            if let Some(l) =
+                heldout_round(&pr, &mut cands, &sig, current_pair, current_loco.as_ref(), alpha_round, &refused)?
+            {
+                nested_loco = Some(l);
             }
         }
         let before_rss = current_loco.as_ref().map(|l| l.rss);
@@ -323,8 +287,9 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         // bound while an edge force or a thermal trend is left in the residuals is no explanation.
         let artefact = artefact.filter(|(b, a, _)| {
             let c = &cands[*b];
-            let beyond = fit_artefact(&pr, &c.spec, &c.fit.x, a.artefact, a.g)
-                .map(|j| f_test(a.rss, j.rss, j.k.saturating_sub(a.k), n, j.k + grid_chosen(c.id), boundary_params(c.id)));
+            let beyond = fit_artefact(&pr, &c.spec, &c.fit.x, a.artefact, a.g).map(|j| {
+                f_test(a.rss, j.rss, j.k.saturating_sub(a.k), n, j.k + grid_chosen(c.id), boundary_params(c.id))
+            });
             match beyond {
                 Some(p) if p.is_finite() && p < alpha_round => {
                     notes.push(format!(

@@ -11,6 +11,7 @@ pub mod classes;
 mod context;
 pub mod error;
 pub mod fit;
+mod heldout;
 pub mod hooks;
 mod instrument;
 pub mod noise;

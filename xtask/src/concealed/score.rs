@@ -53,6 +53,10 @@ impl Outcome {
     fn named(&self) -> bool {
         self.ok() && self.selected.contains(&self.hidden)
     }
+    /// Named with nothing else beside it.
+    fn named_alone(&self) -> bool {
+        self.named() && self.selected.len() == 1
+    }
     fn heldout_change(&self) -> Option<f64> {
         match (self.loco_before, self.loco_after) {
             (Some(b), Some(a)) if b > 0.0 => Some(a / b - 1.0),
@@ -172,6 +176,13 @@ pub fn summarise(family: &str, outcomes: &[Outcome]) -> (String, Headline) {
         "**Correct naming** (`selected` contains the hidden id): at ENR >= 2 {}; over every ENR {}.\n",
         pct(k2, n2),
         pct(kall, mech.len())
+    );
+    let a2 = mech.iter().filter(strong).filter(|o| o.named_alone()).count();
+    let _ = writeln!(
+        s,
+        "**Named alone** (`selected` is exactly the hidden id): at ENR >= 2 {}; over every ENR {}.\n",
+        pct(a2, n2),
+        pct(mech.iter().filter(|o| o.named_alone()).count(), mech.len())
     );
     let beyond = |o: &&&Outcome| o.enr_beyond_nuisance.unwrap_or(0.0) >= 2.0;
     let nb = mech.iter().filter(beyond).count();
