@@ -11,6 +11,10 @@ pub struct Hooks {
     pub friction_factor: f64,
     /// Scale on the Boothroyd heat partition beta (1 = Oxley; M6).
     pub heat_partition_scale: f64,
+    /// Share of the tool-chip frictional heat that enters the chip (1 = Oxley's all; M6's interface
+    /// part). It rides on the heat-partition hook (a simulator that supports
+    /// [`Hook::HeatPartition`] supports both).
+    pub interface_heat_share: f64,
     /// Extra thermomechanical coupling k: the flow stress sees `T_w + (1 + k)(T - T_w)` (0 = off;
     /// negative = weaker softening than the JC law's; M7).
     pub extra_softening: f64,
@@ -33,6 +37,7 @@ impl Hooks {
     pub const NEUTRAL: Hooks = Hooks {
         friction_factor: 1.0,
         heat_partition_scale: 1.0,
+        interface_heat_share: 1.0,
         extra_softening: 0.0,
         thermal_exponent_ln_scale: 0.0,
         rake_shift_rad: 0.0,

@@ -177,17 +177,20 @@ pub fn info(id: MechanismId) -> MechanismInfo {
         },
         M::HeatPartition => MechanismInfo {
             id,
-            title: "heat partition into the workpiece different from Boothroyd's",
-            source: "Boothroyd 1963; Oxley 1989; design note M6",
-            // Up to 3 (beta itself capped at 1): Boothroyd's correlation gives 0.1-0.3 at the
-            // thermal numbers of practical cutting, and a partition from another heat-source
-            // model (e.g. Loewen & Shaw 1954's shear-plane share) can differ from it by a factor;
-            // at 1.8 estimates were pinned at the bound.
-            params: vec![p("k_beta", "-", 0.4, 3.0, 1.0, 1.3)],
+            title: "heat partition different from Oxley's: into the workpiece at the shear plane, into the tool at the interface",
+            source: "Boothroyd 1963; Oxley 1989; Loewen & Shaw 1954; Komanduri & Hou 2001; design note M6",
+            // k_beta scales Boothroyd's shear-plane share into the work, up to 3 (beta itself capped
+            // at 1): Boothroyd's correlation gives 0.1-0.3 at the thermal numbers of practical
+            // cutting, and a partition from another heat-source model (e.g. Loewen & Shaw 1954's
+            // shear-plane share) can differ from it by a factor; at 1.8 estimates were pinned at the
+            // bound. s_int is the share of the tool-chip frictional heat that enters the chip, which
+            // Oxley takes as 1: Loewen & Shaw 1954 and Komanduri & Hou 2001 give the tool 10-50 % of
+            // it at low chip speeds (0.5-0.9); above 1 (to 1.5) covers a dT_M correlation that runs low.
+            params: vec![p("k_beta", "-", 0.4, 3.0, 1.0, 1.3), p("s_int", "-", 0.3, 1.5, 1.0, 0.8)],
             hook: Some(Hook::HeatPartition),
-            signature: "force residual that follows the thermal number V h (largest at low V h)",
+            signature: "k_beta: force residual that follows the thermal number V h (largest at low V h); s_int: interface temperature and chip-side flow stress, so Ft and the chip",
             covariates: "temperature measurement to separate it from JC m",
-            confounders: &[M::ThermalSoftening],
+            confounders: &[M::ThermalSoftening, M::ToolChipFriction],
             separate_by: "measure the tool-chip interface temperature",
         },
         M::SizeEffect => MechanismInfo {
@@ -279,7 +282,10 @@ pub fn set_hooks(
                 h.extra_softening += phi[0];
                 h.thermal_exponent_ln_scale += phi[1];
             }
-            MechanismId::HeatPartition => h.heat_partition_scale *= phi[0],
+            MechanismId::HeatPartition => {
+                h.heat_partition_scale *= phi[0];
+                h.interface_heat_share *= phi[1];
+            }
             MechanismId::SizeEffect => h.flow_multiplier *= size_factor(phi[0], t, ctx.size_h_ref_m),
             MechanismId::BuiltUpEdge => {
                 h.rake_shift_rad += phi[0].to_radians() * bue_indicator(ctx.bue_coordinate(tests, i), ctx.bue_onset)

@@ -277,11 +277,20 @@ pub(crate) fn screen_and_refit(
                         far_bound = true;
                     }
                 }
-                // One parameter: the F-test of the refit is a likelihood-ratio test of the off value,
-                // i.e. the profile interval excludes the off value exactly when the test rejects;
-                // the Wald interval (unreliable near a bound or in a curved model) then only
-                // informs. Two parameters: one Wald interval must exclude its off value.
-                ci_ok = df2 > 0 && (d == 1 || any_excludes);
+                // The F-test of the refit is a likelihood-ratio test of the off point: with one
+                // parameter the profile interval excludes the off value exactly when the test
+                // rejects, and with two the joint confidence region excludes the off point exactly
+                // when it rejects. The marginal Wald intervals (unreliable near a bound, in a curved
+                // model and for correlated parameters, where both may span the off value while the
+                // joint test rejects) only inform. Eleventh session: two-parameter mechanisms needed
+                // one Wald interval to exclude its off value; that rule changed no family-a verdict
+                // and cost the two-parameter heat partition its claims at k_beta's bound.
+                ci_ok = df2 > 0;
+                if d > 1 && !any_excludes && ci_note.is_empty() {
+                    ci_note = "no single parameter's Wald interval excludes its off value (they are correlated); \
+                               the joint F-test decides"
+                        .into();
+                }
                 if far_bound {
                     ci_note = "the estimate sits at its far bound: the effect may be larger than the mechanism's \
                                modelled range"

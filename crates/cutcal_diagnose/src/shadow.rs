@@ -65,7 +65,10 @@ fn grid(k: Knob) -> (Vec<f64>, f64) {
         Knob::Hook(Hook::WearLand) => {
             ([0.0, 0.025, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4].map(|u| u * 1e-3).to_vec(), 0.0)
         }
-        Knob::Eta | Knob::Psi => (vec![0.81, 0.855, 0.9, 0.945, 0.99], 0.9),
+        Knob::Eta => (vec![0.81, 0.855, 0.9, 0.945, 0.99], 0.9),
+        // psi times the interface heat share: the nuisance's psi (+-3 %) and the heat-partition
+        // mechanism's share of the frictional heat entering the chip (0.3-1.5) multiply here.
+        Knob::Psi => (vec![0.25, 0.35, 0.45, 0.55, 0.65, 0.75, 0.81, 0.855, 0.9, 0.945, 0.99, 1.1, 1.25, 1.4], 0.9),
         Knob::LnRhoCp | Knob::LnK => (vec![-0.15, -0.075, 0.0, 0.075, 0.15], 0.0),
         // The nuisance's JC m (+-0.049) and the softening mechanism's m-scale (+-0.7) add here.
         Knob::LnJcM => (vec![-0.7, -0.5, -0.3, -0.15, -0.075, 0.0, 0.075, 0.15, 0.3, 0.5, 0.7], 0.0),
@@ -140,7 +143,9 @@ impl Shadow<'_> {
             Some((Knob::Hook(Hook::FlowMultiplier), u)) => h.flow_multiplier = u.exp(),
             Some((Knob::Hook(k), u)) => h = k.with(h, u),
             Some((Knob::Eta, u)) => options.eta = u,
-            Some((Knob::Psi, u)) => options.psi = u,
+            // Oxley's psi and the interface heat share both scale dT_M; the share carries the
+            // product so that it may exceed psi's own bound of 1.
+            Some((Knob::Psi, u)) => h.interface_heat_share = u / options.psi,
             Some((Knob::LnRhoCp, u)) => {
                 scaled = self.material.clone();
                 scaled.thermal.rho_cp = scaled.thermal.rho_cp.scaled(u.exp());
@@ -397,7 +402,7 @@ impl ShadowSimulation {
             h.edge_radius_m,
             h.wear_land_m,
             nuis(0, 0.9),
-            nuis(1, 0.9),
+            nuis(1, 0.9) * h.interface_heat_share,
             nuis(2, 0.0),
             nuis(3, 0.0),
             nuis(4, 0.0) + h.thermal_exponent_ln_scale,

@@ -288,6 +288,7 @@ pub fn oxley_with_hooks_from(
     let physics = Physics {
         interface_friction_factor: h.friction_factor.clamp(1e-3, 1.0),
         heat_partition_scale: h.heat_partition_scale.clamp(1e-3, 3.0),
+        interface_heat_share: h.interface_heat_share.clamp(1e-3, 2.0),
         thermal_softening_scale: (1.0 + h.extra_softening).clamp(0.0, 3.0),
         edge_ploughing: if h.edge_radius_m > 0.0 {
             Some(EdgePloughing::waldorf1998(h.edge_radius_m.min(0.5e-3)).map_err(err)?)

@@ -49,8 +49,9 @@ fn shadow_returns_the_external_numbers_with_everything_off() {
 #[test]
 fn shadow_signatures_match_direct_runs_of_the_full_model_between_nodes() {
     // The signature of a 12 um edge (between the 10 and 15 um nodes), of m_f = 0.75 (between
-    // 0.7 and 0.8) and of the softening's JC m scaled by e^0.4 (between the 0.3 and 0.5 nodes of
-    // the JC-m knob) at each test must equal the ratio of two direct runs of the full model with
+    // 0.7 and 0.8), of the softening's JC m scaled by e^0.4 (between the 0.3 and 0.5 nodes of
+    // the JC-m knob) and of an interface heat share 0.78 (psi s = 0.702, between the 0.65 and 0.75
+    // nodes of the psi knob) at each test must equal the ratio of two direct runs of the full model with
     // the shadow's fitted JC set, to the interpolation error (< 1 % of the force).
     let tests = design();
     let ext = external(&tests, &OxleyOptions::wide(), &Hooks::NEUTRAL);
@@ -62,6 +63,7 @@ fn shadow_signatures_match_direct_runs_of_the_full_model_between_nodes() {
         Hooks { edge_radius_m: 12e-6, ..Hooks::NEUTRAL },
         Hooks { friction_factor: 0.75, ..Hooks::NEUTRAL },
         Hooks { thermal_exponent_ln_scale: 0.4, ..Hooks::NEUTRAL },
+        Hooks { interface_heat_share: 0.78, ..Hooks::NEUTRAL },
     ] {
         let via = sim.simulate(&tests, &theta, &vec![h; tests.len()]).unwrap();
         for ((t, v), e) in tests.iter().zip(&via).zip(&ext) {

@@ -345,7 +345,7 @@ impl Context<'_> {
         let gr_sqrt = (rho_cp * v * t1 / cond * t2 / h).sqrt();
         let chip = ChipHeat {
             base_c: base,
-            amplitude_c: self.options.psi * d_t_c * TEN_POW_0_06 * gr_sqrt,
+            amplitude_c: self.options.psi * self.physics.interface_heat_share * d_t_c * TEN_POW_0_06 * gr_sqrt,
             decay: 0.195 * LN_10 * gr_sqrt,
             strain_coef: 0.5 * h / (SQRT3 * t2),
             rate_coef_per_s: v_c / (SQRT3 * t2),

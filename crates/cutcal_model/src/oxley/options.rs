@@ -236,12 +236,24 @@ pub struct Physics {
     pub interface_friction_factor: f64,
     /// Scale on Boothroyd's heat partition beta (M6); 1 = Oxley. The scaled beta is clamped to [0, 1].
     pub heat_partition_scale: f64,
+    /// Share of the tool-chip frictional heat that goes into the chip (M6, the interface part of the
+    /// heat partition): it scales the maximum interface rise dT_M, so that `T_int = T_w + dT_SZ +
+    /// psi s dT_M`. 1 = Oxley 1989 (all frictional heat into the chip); below 1 the tool takes the
+    /// rest (Loewen & Shaw 1954; Komanduri & Hou 2001); above 1 corrects a dT_M correlation that runs
+    /// low. Within (0, 2].
+    #[serde(default = "one")]
+    pub interface_heat_share: f64,
     /// Thermal-softening coupling kappa_T (M7): the flow stress is evaluated at
     /// `T_w + kappa_T (T - T_w)`; 1 = coupled (Oxley), 0 = thermal softening off, above 1 = softening
     /// stronger than the JC law's (Ertuerk, Malakizadi & Larsson 2020 report such coupling), at most 3.
     pub thermal_softening_scale: f64,
     /// Flank-wear land forces (M3; Smithey, Kapoor & DeVor 2001), scaled by k_AB, or `None`.
     pub flank_wear: Option<FlankWear>,
+}
+
+/// Serde default of a neutral multiplier.
+fn one() -> f64 {
+    1.0
 }
 
 impl Physics {
@@ -253,6 +265,7 @@ impl Physics {
             edge_ploughing: None,
             interface_friction_factor: 1.0,
             heat_partition_scale: 1.0,
+            interface_heat_share: 1.0,
             thermal_softening_scale: 1.0,
             flank_wear: None,
         }
@@ -287,6 +300,7 @@ impl Physics {
         }
         check_range("interface_friction_factor", self.interface_friction_factor, 0.0, 1.0, "0 < m_f <= 1")?;
         check_range("heat_partition_scale", self.heat_partition_scale, 0.0, 3.0, "0 < kappa_beta <= 3")?;
+        check_range("interface_heat_share", self.interface_heat_share, 0.0, 2.0, "0 < s <= 2")?;
         let s = self.thermal_softening_scale;
         if !(s.is_finite() && (0.0..=3.0).contains(&s)) {
             return Err(ModelError::out_of_range("thermal_softening_scale", s, "0 <= kappa_T <= 3"));
@@ -330,6 +344,10 @@ mod tests {
         p.thermal_softening_scale = 3.5;
         assert!(p.validate().is_err());
         p.thermal_softening_scale = 1.5;
+        p.validate().unwrap();
+        p.interface_heat_share = 2.5;
+        assert!(p.validate().unwrap_err().to_string().contains("interface_heat_share"));
+        p.interface_heat_share = 0.6;
         p.validate().unwrap();
     }
 }

@@ -53,3 +53,24 @@ proptest! {
         prop_assert!((p.chip_thickness_m - t1 * 1e-3 * (phi - a).cos() / phi.sin()).abs() < 1e-12);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+
+    // The interface heat share s scales the maximum interface rise dT_M as psi does
+    // (T_int = T_w + dT_SZ + psi s dT_M, Oxley 1989 Sec 4.3 with the tool's share of the frictional
+    // heat, Loewen & Shaw 1954): psi 0.9 with share s is the model with psi 0.9 s and share 1, and a
+    // share below 1 gives a cooler interface than Oxley's all-to-the-chip.
+    #[test]
+    fn interface_heat_share_acts_as_psi(v in 100.0..400.0f64, t1 in 0.08..0.3f64, rake in -5.0..10.0f64, s in 0.5..0.95f64) {
+        let cond = CuttingConditions::new(v / 60.0, t1 * 1e-3, 1e-3, rake.to_radians(), 25.0).unwrap();
+        let shared = Physics { interface_heat_share: s, ..Physics::baseline() };
+        let a = oxley::predict(&aisi1045(), &jc_aisi1045(), &cond, &OxleyOptions::wide(), &shared).unwrap();
+        let psi = OxleyOptions::wide().with_eta_psi(0.9, 0.9 * s).unwrap();
+        let b = oxley::predict(&aisi1045(), &jc_aisi1045(), &cond, &psi, &Physics::baseline()).unwrap();
+        prop_assert!((a.cutting_force_n_per_m / b.cutting_force_n_per_m - 1.0).abs() < 1e-6);
+        prop_assert!((a.temperature_int_c - b.temperature_int_c).abs() < 1e-3);
+        let full = predict(v, t1, rake);
+        prop_assert!(a.temperature_int_c < full.temperature_int_c, "{} !< {}", a.temperature_int_c, full.temperature_int_c);
+    }
+}
