@@ -280,17 +280,7 @@ impl Report {
             self.thresholds.per_mechanism_alpha, self.calibration
         );
         for m in &self.mechanisms {
-            let params: Vec<String> = m
-                .params
-                .iter()
-                .map(|(k, v)| match (v.ci_low, v.ci_high) {
-                    (Some(l), Some(h)) if v.ci_note.is_empty() => {
-                        format!("{k} = {:.4} {} [{l:.4}, {h:.4}]", v.value, v.unit)
-                    }
-                    (Some(l), Some(h)) => format!("{k} = {:.4} {} [{l:.4}, {h:.4}] ({})", v.value, v.unit, v.ci_note),
-                    _ => format!("{k} = {:.4} {} (interval not available: {})", v.value, v.unit, v.ci_note),
-                })
-                .collect();
+            let params = params_text(m);
             let ho = match (m.heldout_rms_before, m.heldout_rms_after) {
                 (Some(b), Some(a)) => format!("held-out RMS {b:.1} % -> {a:.1} %"),
                 _ => "held-out: not available".into(),
@@ -304,7 +294,7 @@ impl Report {
                 m.p_value.map_or_else(|| "not available (too few numbers)".to_string(), |v| format!("{v:.2e}")),
                 100.0 * m.explained_fraction,
                 ho,
-                params.join("; "),
+                params,
                 m.reason
             );
         }
@@ -336,5 +326,68 @@ impl Report {
         let _ = writeln!(s, "\nNext test: {}", self.next_test);
         let _ = writeln!(s, "\n{}", self.explanation);
         s
+    }
+}
+
+/// A mechanism's parameters with their intervals, for the text report. A note that all of them
+/// share (one refit, one covariance) is printed once, after them.
+fn params_text(m: &MechanismResult) -> String {
+    let shared = m.params.values().next().map(|v| v.ci_note.as_str()).filter(|n| {
+        !n.is_empty()
+            && m.params.len() > 1
+            && m.params.values().all(|v| v.ci_note == *n && v.ci_low.is_some() && v.ci_high.is_some())
+    });
+    let mut params: Vec<String> = m
+        .params
+        .iter()
+        .map(|(k, v)| match (v.ci_low, v.ci_high) {
+            (Some(l), Some(h)) if v.ci_note.is_empty() || shared.is_some() => {
+                format!("{k} = {:.4} {} [{l:.4}, {h:.4}]", v.value, v.unit)
+            }
+            (Some(l), Some(h)) => format!("{k} = {:.4} {} [{l:.4}, {h:.4}] ({})", v.value, v.unit, v.ci_note),
+            _ => format!("{k} = {:.4} {} (interval not available: {})", v.value, v.unit, v.ci_note),
+        })
+        .collect();
+    if let Some(n) = shared {
+        params.push(format!("({n})"));
+    }
+    params.join("; ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mechanism(notes: [&str; 2]) -> MechanismResult {
+        let pv = |value: f64, note: &str| ParamValue {
+            value,
+            unit: "-".into(),
+            ci_low: Some(value - 0.1),
+            ci_high: Some(value + 0.1),
+            ci_note: note.into(),
+        };
+        MechanismResult {
+            id: "heat_partition".into(),
+            accepted: false,
+            params: [("k_beta".to_string(), pv(1.5, notes[0])), ("s_int".to_string(), pv(0.8, notes[1]))]
+                .into_iter()
+                .collect(),
+            delta_aicc: Some(-3.0),
+            p_value: Some(0.01),
+            heldout_rms_before: None,
+            heldout_rms_after: None,
+            explained_fraction: 0.3,
+            absorption: 0.1,
+            screen_p_value: Some(0.02),
+            reason: String::new(),
+        }
+    }
+
+    #[test]
+    fn a_note_the_parameters_share_is_printed_once() {
+        let text = params_text(&mechanism(["joint", "joint"]));
+        assert_eq!(text, "k_beta = 1.5000 - [1.4000, 1.6000]; s_int = 0.8000 - [0.7000, 0.9000]; (joint)");
+        let own = params_text(&mechanism(["", "at its bound"]));
+        assert_eq!(own, "k_beta = 1.5000 - [1.4000, 1.6000]; s_int = 0.8000 - [0.7000, 0.9000] (at its bound)");
     }
 }
