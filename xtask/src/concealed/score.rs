@@ -95,6 +95,65 @@ fn binned(s: &mut String, label: &str, mech: &[&Outcome], key: impl Fn(&Outcome)
     }
 }
 
+/// Why a mechanism dataset at ENR >= 2 was not named (`None` when it was).
+fn miss_cause(o: &Outcome) -> Option<usize> {
+    if o.named() {
+        None
+    } else if !o.ok() {
+        Some(4)
+    } else if o.ambiguous_with.contains(&o.hidden) {
+        Some(0)
+    } else if !o.selected.is_empty() {
+        Some(1)
+    } else if o.enr_beyond_nuisance.is_some_and(|e| e < 1.0) {
+        Some(2)
+    } else {
+        Some(3)
+    }
+}
+
+/// The misses at ENR >= 2 by cause, per mechanism: what the data could not separate (`ambiguous`
+/// with the truth among the near-equivalent rivals), a wrong name, nothing claimed where the stated
+/// nuisance reproduces the effect (ENR beyond nuisance < 1, `detectable.rs`), nothing claimed
+/// otherwise, and diagnosis errors.
+fn misses_by_cause(s: &mut String, mech: &[&Outcome]) {
+    let _ = writeln!(
+        s,
+        "\n**Misses at ENR >= 2 by cause:** `ambiguous` with the truth among the near-equivalent rivals; \
+         another mechanism named; nothing claimed where the stated nuisance reproduces the effect (ENR \
+         beyond nuisance < 1); nothing claimed otherwise; diagnosis error.\n"
+    );
+    let _ = writeln!(
+        s,
+        "| mechanism | missed | ambiguous, truth among the rivals | another named | nothing claimed, ENR beyond nuisance < 1 | nothing claimed, ENR beyond nuisance >= 1 | diagnosis error |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    let mut total = [0usize; 5];
+    let mut row = |label: &str, rows: Vec<&&Outcome>, total: &mut [usize; 5]| {
+        let mut c = [0usize; 5];
+        for o in &rows {
+            if let Some(k) = miss_cause(o) {
+                c[k] += 1;
+                total[k] += 1;
+            }
+        }
+        let missed: usize = c.iter().sum();
+        let _ =
+            writeln!(s, "| {label} | {missed}/{} | {} | {} | {} | {} | {} |", rows.len(), c[0], c[1], c[2], c[3], c[4]);
+    };
+    let strong = |o: &&&Outcome| o.enr.unwrap_or(0.0) >= 2.0;
+    for id in MECHANISMS {
+        row(id, mech.iter().filter(strong).filter(|o| o.hidden == id).collect(), &mut total);
+    }
+    let n = mech.iter().filter(strong).count();
+    let missed: usize = total.iter().sum();
+    let _ = writeln!(
+        s,
+        "| all | {missed}/{n} | {} | {} | {} | {} | {} |",
+        total[0], total[1], total[2], total[3], total[4]
+    );
+}
+
 fn pct(k: usize, n: usize) -> String {
     if n == 0 {
         "-".into()
@@ -214,6 +273,7 @@ pub fn summarise(family: &str, outcomes: &[Outcome]) -> (String, Headline) {
                 .map_or_else(|| "not available".to_string(), |v| format!("{v:.1}"))
         );
     }
+    misses_by_cause(&mut s, &mech);
     // Naming against ENR, and against the ENR beyond the stated nuisance.
     binned(&mut s, "ENR", &mech, |o| o.enr.or(Some(0.0)));
     binned(&mut s, "ENR beyond nuisance", &mech, |o| o.enr_beyond_nuisance);
@@ -316,6 +376,44 @@ pub fn summarise(family: &str, outcomes: &[Outcome]) -> (String, Headline) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn outcome(hidden: &str, bn: f64, selected: &[&str], ambiguous: &[&str]) -> Outcome {
+        Outcome {
+            family: "a".into(),
+            index: 0,
+            hidden: hidden.into(),
+            enr: Some(3.0),
+            enr_shape: None,
+            enr_beyond_nuisance: Some(bn),
+            status: "ok".into(),
+            reason: String::new(),
+            verdict: Some(if selected.is_empty() { "none" } else { "missing_physics" }.into()),
+            selected: selected.iter().map(|s| (*s).into()).collect(),
+            ambiguous_with: ambiguous.iter().map(|s| (*s).into()).collect(),
+            loco_before: None,
+            loco_after: None,
+            seconds: 0.0,
+        }
+    }
+
+    #[test]
+    fn misses_are_sorted_by_cause() {
+        let h = "heat_partition";
+        assert_eq!(miss_cause(&outcome(h, 0.5, &[h], &[])), None);
+        assert_eq!(miss_cause(&outcome(h, 3.0, &[], &[h, "thermal_softening"])), Some(0));
+        assert_eq!(miss_cause(&outcome(h, 0.5, &["thermal_softening"], &[])), Some(1));
+        assert_eq!(miss_cause(&outcome(h, 0.5, &[], &[])), Some(2));
+        assert_eq!(miss_cause(&outcome(h, 1.0, &[], &[])), Some(3));
+        let mut err = outcome(h, 3.0, &[], &[]);
+        err.status = "diagnosis_error".into();
+        assert_eq!(miss_cause(&err), Some(4));
+        let rows = [outcome(h, 0.5, &[h], &[]), outcome(h, 0.5, &[], &[]), outcome(h, 3.0, &["size_effect"], &[])];
+        let refs: Vec<&Outcome> = rows.iter().collect();
+        let mut s = String::new();
+        misses_by_cause(&mut s, &refs);
+        assert!(s.contains("| heat_partition | 2/3 | 0 | 1 | 1 | 0 | 0 |"), "{s}");
+        assert!(s.contains("| all | 2/3 | 0 | 1 | 1 | 0 | 0 |"), "{s}");
+    }
 
     #[test]
     fn wilson_by_hand() {
