@@ -138,17 +138,24 @@ fn mode_a(
                     .ranked
                     .iter()
                     .map(|c| {
-                        let fitted = choice
-                            .fitted
-                            .iter()
-                            .find(|f| f.0 == c.class)
-                            .map_or("shadow not built".to_string(), |(_, _, rms)| {
-                                format!("fitted shadow RMS {rms:.1} %")
-                            });
+                        let fitted = choice.fitted.iter().find(|f| f.0 == c.class).map_or(
+                            "shadow not built".to_string(),
+                            |(_, unsolved, rms)| {
+                                if *unsolved >= measured.len() {
+                                    "fitted shadow: no test solved".to_string()
+                                } else {
+                                    format!(
+                                        "fitted shadow: {} of {} tests solved, RMS {rms:.1} % over those",
+                                        measured.len() - unsolved,
+                                        measured.len()
+                                    )
+                                }
+                            },
+                        );
                         let misfit =
                             c.rms.map_or("not available (none solved)".to_string(), |r| format!("{:.1} %", 100.0 * r));
                         format!(
-                            "{:?}: {} of {} tests solved, misfit {misfit}, {fitted}",
+                            "{:?}: nominal set {} of {} tests solved, misfit {misfit}; {fitted}",
                             c.class,
                             c.solved,
                             measured.len()
