@@ -99,7 +99,7 @@ pub struct ShadowSummary {
     pub jc: JcParams,
     /// RMS of `ln(y_shadow / y_external)` over all outputs, %, after the fit.
     pub rms_pct: f64,
-    /// Tests whose shadow had no solution (their signatures are zero), with the reason.
+    /// Tests whose shadow had no solution (no signature; Mode A leaves them out), with the reason.
     pub unsolved: Vec<(String, String)>,
     /// Whether the shadow fit met a tolerance.
     pub converged: bool,

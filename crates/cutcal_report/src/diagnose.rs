@@ -192,11 +192,17 @@ fn mode_a(
                     ""
                 }
             ));
+            // A test without a shadow solution has no signature for any knob, nuisance or mechanism:
+            // it could only add a residual that no hypothesis moves, so it is left out.
             for (id, why) in &sm.unsolved {
-                cfg.simulator_notes
-                    .push(format!("test {id}: the shadow has no solution, its signatures are zero ({why})"));
+                cfg.simulator_notes.push(format!(
+                    "test {id}: the shadow has no solution there, so no signature can be computed; the test is \
+                     left out of the diagnosis ({why})"
+                ));
             }
-            Ok(diagnose(&sim, measured, &cfg)?)
+            let kept: Vec<cutcal_model::CuttingTest> =
+                measured.iter().filter(|t| !sm.unsolved.iter().any(|(id, _)| *id == t.id)).cloned().collect();
+            Ok(diagnose(&sim, &kept, &cfg)?)
         }
         Err(e) => {
             cfg.simulator_notes
@@ -316,6 +322,30 @@ mod tests {
             free_jc: false,
             model: ForwardModel::Oxley,
         }
+    }
+
+    #[test]
+    fn a_test_without_a_shadow_solution_is_left_out_and_named() {
+        // With AISI 1045's thermal data and the Jaspers set, cutcal's Oxley model has no sticking
+        // solution at test 1 (38 m/min, 0.034 mm, rake 5 deg; `cutcal predict` says why): that test
+        // has no signature, so it is left out and the report names it.
+        let r = diagnose_files(&args(
+            "fixtures/diagnose/aisi1045_low_speed_recordings.csv",
+            Some("fixtures/diagnose/aisi1045_low_speed_simulation.csv"),
+            Some("fixtures/materials/aisi1045.toml"),
+            Some("fixtures/jc/aisi1045_jaspers2002.toml"),
+        ))
+        .unwrap();
+        assert!(
+            r.simulator_notes
+                .iter()
+                .any(|n| n.starts_with("test 1: the shadow has no solution") && n.contains("left out")),
+            "{:?}",
+            r.simulator_notes
+        );
+        assert!(r.residuals.iter().all(|x| x.test != "1"), "test 1 is still in the residuals");
+        assert!(r.residuals.iter().any(|x| x.test == "2"));
+        assert_eq!(r.observations, 15 * 3, "16 tests with Fc, Ft and tc, less test 1");
     }
 
     #[test]
