@@ -192,16 +192,27 @@ fn mode_a(
                     ""
                 }
             ));
+            let kept: Vec<cutcal_model::CuttingTest> =
+                measured.iter().filter(|t| !sm.unsolved.iter().any(|(id, _)| *id == t.id)).cloned().collect();
+            if 2 * kept.len() < measured.len() {
+                cfg.simulator_notes.push(format!(
+                    "the fitted shadow has a solution at only {} of {} tests; only output-level mechanisms are \
+                     testable, on every test",
+                    kept.len(),
+                    measured.len()
+                ));
+                let fixed = FixedSimulation::new(entries, conditions >= 3)?;
+                return Ok(diagnose(&fixed, measured, &cfg)?);
+            }
             // A test without a shadow solution has no signature for any knob, nuisance or mechanism:
-            // it could only add a residual that no hypothesis moves, so it is left out.
+            // it could only add a residual that no hypothesis moves, so it is left out (when most
+            // tests keep theirs).
             for (id, why) in &sm.unsolved {
                 cfg.simulator_notes.push(format!(
                     "test {id}: the shadow has no solution there, so no signature can be computed; the test is \
                      left out of the diagnosis ({why})"
                 ));
             }
-            let kept: Vec<cutcal_model::CuttingTest> =
-                measured.iter().filter(|t| !sm.unsolved.iter().any(|(id, _)| *id == t.id)).cloned().collect();
             Ok(diagnose(&sim, &kept, &cfg)?)
         }
         Err(e) => {
