@@ -192,6 +192,14 @@ fn mode_a(
                     ""
                 }
             ));
+            if let Some(note) = sm.fidelity_note() {
+                let hint = if material.is_none() {
+                    "; the simulation's own material file (--material) may bring the shadow closer"
+                } else {
+                    ""
+                };
+                cfg.simulator_notes.push(format!("{note}{hint}"));
+            }
             let kept: Vec<cutcal_model::CuttingTest> =
                 measured.iter().filter(|t| !sm.unsolved.iter().any(|(id, _)| *id == t.id)).cloned().collect();
             if 2 * kept.len() < measured.len() {
