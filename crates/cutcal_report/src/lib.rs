@@ -23,6 +23,7 @@
 
 pub mod bootstrap;
 pub mod diagnose;
+mod diagnose_mode_a;
 pub mod dpzd;
 pub mod dpzd_report;
 pub mod error;

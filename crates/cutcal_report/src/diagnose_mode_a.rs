@@ -1,0 +1,140 @@
+//! Mode A of `cutcal diagnose` (`--simulation`): the shadow of the external simulation
+//! (`cutcal_diagnose::shadow`), on the material given or on the generic class that fits it best
+//! (`cutcal_diagnose::classes`), with the report's notes on what the shadow could and could not do.
+
+use cutcal_diagnose::classes::{self, MaterialClass};
+use cutcal_diagnose::{diagnose, Config, FixedSimulation, Prediction, Report, ShadowSimulation};
+
+use cutcal_io::jc_file::load_jc;
+use cutcal_io::material_file::MaterialFile;
+
+use crate::diagnose::bounds_centre;
+use crate::error::{Context, Result};
+
+/// Mode A: the shadow of the external simulation (cutcal_diagnose::shadow) on the material given,
+/// else on a generic steel (AISI 1045 thermal data of Lalwani et al. 2009); the external numbers
+/// alone (no in-model mechanism testable) when the shadow cannot be built.
+pub(crate) fn mode_a(
+    entries: Vec<(String, Prediction)>,
+    measured: &[cutcal_model::CuttingTest],
+    material: Option<&MaterialFile>,
+    jc: Option<&std::path::Path>,
+) -> Result<Report> {
+    let external: Vec<Prediction> = measured
+        .iter()
+        .map(|t| entries.iter().find(|(id, _)| *id == t.id).map(|(_, p)| *p))
+        .collect::<Option<Vec<_>>>()
+        .context("a measured test has no simulation row")?;
+    let conditions = cutcal_diagnose::condition_groups(measured).len();
+    let mut cfg = Config::standard("A");
+    // The shadow's material: the one given, else the generic class whose fitted shadow matches the
+    // external simulation best (cutcal_diagnose::classes).
+    let built = match material {
+        Some(mf) => {
+            let nominal = match jc {
+                Some(p) => load_jc(p)?,
+                None if mf.bounds.is_some() => bounds_centre(mf)?,
+                None => MaterialClass::Steel.material().1,
+            };
+            ShadowSimulation::build(&mf.material, nominal, measured, &external, conditions >= 3)
+        }
+        None => {
+            let nominal = jc.map(load_jc).transpose()?;
+            classes::best_shadow(measured, &external, conditions >= 3, nominal).map(|choice| {
+                let why: Vec<String> = choice
+                    .ranked
+                    .iter()
+                    .map(|c| {
+                        let fitted = choice.fitted.iter().find(|f| f.0 == c.class).map_or(
+                            "shadow not built".to_string(),
+                            |(_, unsolved, rms)| {
+                                if *unsolved >= measured.len() {
+                                    "fitted shadow: no test solved".to_string()
+                                } else {
+                                    format!(
+                                        "fitted shadow: {} of {} tests solved, RMS {rms:.1} % over those",
+                                        measured.len() - unsolved,
+                                        measured.len()
+                                    )
+                                }
+                            },
+                        );
+                        let misfit =
+                            c.rms.map_or("not available (none solved)".to_string(), |r| format!("{:.1} %", 100.0 * r));
+                        format!(
+                            "{:?}: nominal set {} of {} tests solved, misfit {misfit}; {fitted}",
+                            c.class,
+                            c.solved,
+                            measured.len()
+                        )
+                    })
+                    .collect();
+                cfg.simulator_notes.push(format!(
+                    "no --material: generic class chosen from the simulation: {:?}, the fewest unsolved tests and \
+                     then the smallest fitted RMS ({})",
+                    choice.class,
+                    why.join("; ")
+                ));
+                choice.shadow
+            })
+        }
+    };
+    match built {
+        Ok(sim) => {
+            let sm = sim.summary();
+            cfg.simulator_notes.push(format!(
+                "shadow of the external simulation: cutcal's extended Oxley model on {} thermal data, JC A {:.0} MPa, \
+                 B {:.0} MPa, n {:.3}, C {:.4}, m {:.2} fitted to it (RMS {:.1} %{}{})",
+                sm.material,
+                sm.jc.a_pa / 1e6,
+                sm.jc.b_pa / 1e6,
+                sm.jc.n,
+                sm.jc.c,
+                sm.jc.m,
+                sm.rms_pct,
+                if sm.converged { "" } else { "; the shadow fit stopped at its iteration cap" },
+                if sm.fit_discarded {
+                    "; the fitted set left more tests unsolved, so the nominal set at the fitted level is used"
+                } else {
+                    ""
+                }
+            ));
+            if let Some(note) = sm.fidelity_note() {
+                let hint = if material.is_none() {
+                    "; the simulation's own material file (--material) may bring the shadow closer"
+                } else {
+                    ""
+                };
+                cfg.simulator_notes.push(format!("{note}{hint}"));
+            }
+            let kept: Vec<cutcal_model::CuttingTest> =
+                measured.iter().filter(|t| !sm.unsolved.iter().any(|(id, _)| *id == t.id)).cloned().collect();
+            if 2 * kept.len() < measured.len() {
+                cfg.simulator_notes.push(format!(
+                    "the fitted shadow has a solution at only {} of {} tests; only output-level mechanisms are \
+                     testable, on every test",
+                    kept.len(),
+                    measured.len()
+                ));
+                let fixed = FixedSimulation::new(entries, conditions >= 3)?;
+                return Ok(diagnose(&fixed, measured, &cfg)?);
+            }
+            // A test without a shadow solution has no signature for any knob, nuisance or mechanism:
+            // it could only add a residual that no hypothesis moves, so it is left out (when most
+            // tests keep theirs).
+            for (id, why) in &sm.unsolved {
+                cfg.simulator_notes.push(format!(
+                    "test {id}: the shadow has no solution there, so no signature can be computed; the test is \
+                     left out of the diagnosis ({why})"
+                ));
+            }
+            Ok(diagnose(&sim, &kept, &cfg)?)
+        }
+        Err(e) => {
+            cfg.simulator_notes
+                .push(format!("the shadow model could not be built ({e}); only output-level mechanisms are testable"));
+            let sim = FixedSimulation::new(entries, conditions >= 3)?;
+            Ok(diagnose(&sim, measured, &cfg)?)
+        }
+    }
+}
