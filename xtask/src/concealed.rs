@@ -127,6 +127,7 @@ fn one(
         ambiguous_with: Vec::new(),
         loco_before: None,
         loco_after: None,
+        shadow_rms_pct: None,
         seconds: 0.0,
     };
     let material = opts.material.as_deref().and_then(material::by_name);
@@ -161,6 +162,7 @@ fn one(
             let loco = |which: &str| v.pointer(&format!("/fit/{which}/loco/all")).and_then(serde_json::Value::as_f64);
             o.loco_before = loco("before");
             o.loco_after = loco("after");
+            o.shadow_rms_pct = v.get("shadow_rms_pct").and_then(serde_json::Value::as_f64);
             let _ = std::fs::write(dir.join("report.json"), serde_json::to_string_pretty(&v).unwrap_or_default());
         }
         Ok(Err(e)) => {

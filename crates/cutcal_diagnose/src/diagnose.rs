@@ -461,5 +461,6 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         noise_source: noise_model.source.to_vec(),
         calibration: calibration_text,
         simulator_notes,
+        shadow_rms_pct: None,
     })
 }

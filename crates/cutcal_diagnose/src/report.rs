@@ -238,6 +238,10 @@ pub struct Report {
     /// Notes about the simulator (Mode A: the shadow fit of the external simulation).
     #[serde(default)]
     pub simulator_notes: Vec<String>,
+    /// Mode A: RMS (%) of the fitted shadow against the external simulation over the tests it
+    /// solves; absent in Mode B and when no shadow was built.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shadow_rms_pct: Option<f64>,
 }
 
 impl Report {

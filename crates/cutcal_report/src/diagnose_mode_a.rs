@@ -128,7 +128,9 @@ pub(crate) fn mode_a(
                      left out of the diagnosis ({why})"
                 ));
             }
-            Ok(diagnose(&sim, &kept, &cfg)?)
+            let mut report = diagnose(&sim, &kept, &cfg)?;
+            report.shadow_rms_pct = Some(sm.rms_pct);
+            Ok(report)
         }
         Err(e) => {
             cfg.simulator_notes

@@ -12,7 +12,8 @@ An independent benchmark of `cutcal diagnose` (issue 10, item 5). The generator 
 `cutcal_model::oxley` or `cutcal_model::dpzd`): its forward models and mechanisms are written from
 the literature in forms other than the detector's. Every dataset is diagnosed in Mode A exactly as a
 user would run `cutcal diagnose --recordings recordings.csv --simulation simulation.csv --json` (no
-material file); only `verdict`, `selected`, `ambiguous_with` and `fit.before/after.loco.all` are read.
+material file); only `verdict`, `selected`, `ambiguous_with`, `fit.before/after.loco.all` and
+`shadow_rms_pct` (for the table of naming by the shadow's fit) are read.
 
 **Family `a` is the family the detector may be tuned on; family `b` is never tuned on, and only its
 figures may be quoted in the README.**

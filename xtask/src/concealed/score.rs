@@ -39,6 +39,9 @@ pub struct Outcome {
     pub loco_before: Option<f64>,
     /// `fit.after.loco.all`, %.
     pub loco_after: Option<f64>,
+    /// `shadow_rms_pct`: the fitted shadow's RMS against the simulation, %.
+    #[serde(default)]
+    pub shadow_rms_pct: Option<f64>,
     /// Wall time of the diagnosis, s.
     pub seconds: f64,
 }
@@ -152,6 +155,35 @@ fn misses_by_cause(s: &mut String, mech: &[&Outcome]) {
         "| all | {missed}/{n} | {} | {} | {} | {} | {} |",
         total[0], total[1], total[2], total[3], total[4]
     );
+}
+
+/// Naming at ENR >= 2 and clean nulls by the shadow's fitted RMS against the simulation
+/// (`shadow_rms_pct`): the signatures come from the shadow, so naming follows its fidelity.
+fn by_shadow_fidelity(s: &mut String, mech: &[&Outcome], nulls: &[&Outcome]) {
+    let _ = writeln!(
+        s,
+        "\n**By the shadow's fit to the simulation** (`shadow_rms_pct`, the fitted shadow's RMS against \
+         `simulation.csv`; the signatures come from the shadow):\n"
+    );
+    let _ = writeln!(s, "| shadow RMS | named at ENR >= 2 | nulls with nothing selected |");
+    let _ = writeln!(s, "|---|---|---|");
+    let bins =
+        [(0.0, 3.0, "below 3 %"), (3.0, 6.0, "3-6 %"), (6.0, 10.0, "6-10 %"), (10.0, f64::INFINITY, "10 % and above")];
+    for (lo, hi, label) in bins {
+        let inside = |o: &&&Outcome| o.shadow_rms_pct.is_some_and(|r| (lo..hi).contains(&r));
+        let m: Vec<&&Outcome> = mech.iter().filter(|o| o.enr.unwrap_or(0.0) >= 2.0).filter(inside).collect();
+        let n: Vec<&&Outcome> = nulls.iter().filter(inside).collect();
+        let _ = writeln!(
+            s,
+            "| {label} | {} | {} |",
+            pct(m.iter().filter(|o| o.named()).count(), m.len()),
+            pct(n.iter().filter(|o| o.ok() && o.selected.is_empty()).count(), n.len())
+        );
+    }
+    let none = mech.iter().filter(|o| o.enr.unwrap_or(0.0) >= 2.0 && o.shadow_rms_pct.is_none()).count();
+    if none > 0 {
+        let _ = writeln!(s, "\n{none} mechanism datasets at ENR >= 2 have no shadow (or no report).");
+    }
 }
 
 fn pct(k: usize, n: usize) -> String {
@@ -274,6 +306,7 @@ pub fn summarise(family: &str, outcomes: &[Outcome]) -> (String, Headline) {
         );
     }
     misses_by_cause(&mut s, &mech);
+    by_shadow_fidelity(&mut s, &mech, &nulls);
     // Naming against ENR, and against the ENR beyond the stated nuisance.
     binned(&mut s, "ENR", &mech, |o| o.enr.or(Some(0.0)));
     binned(&mut s, "ENR beyond nuisance", &mech, |o| o.enr_beyond_nuisance);
@@ -392,6 +425,7 @@ mod tests {
             ambiguous_with: ambiguous.iter().map(|s| (*s).into()).collect(),
             loco_before: None,
             loco_after: None,
+            shadow_rms_pct: None,
             seconds: 0.0,
         }
     }
@@ -413,6 +447,25 @@ mod tests {
         misses_by_cause(&mut s, &refs);
         assert!(s.contains("| heat_partition | 2/3 | 0 | 1 | 1 | 0 | 0 |"), "{s}");
         assert!(s.contains("| all | 2/3 | 0 | 1 | 1 | 0 | 0 |"), "{s}");
+    }
+
+    #[test]
+    fn naming_is_binned_by_the_shadow_fit() {
+        let h = "size_effect";
+        let with = |rms: Option<f64>, selected: &[&str], hidden: &str| {
+            let mut o = outcome(hidden, 3.0, selected, &[]);
+            o.shadow_rms_pct = rms;
+            o
+        };
+        let mech = [with(Some(1.0), &[h], h), with(Some(2.9), &[], h), with(Some(7.0), &[h], h), with(None, &[h], h)];
+        let nulls = [with(Some(12.0), &[], "null"), with(Some(12.5), &["edge_ploughing"], "null")];
+        let (m, n): (Vec<&Outcome>, Vec<&Outcome>) = (mech.iter().collect(), nulls.iter().collect());
+        let mut s = String::new();
+        by_shadow_fidelity(&mut s, &m, &n);
+        assert!(s.contains("| below 3 % | 1/2 = 50 % | - |"), "{s}");
+        assert!(s.contains("| 6-10 % | 1/1 = 100 % | - |"), "{s}");
+        assert!(s.contains("| 10 % and above | - | 1/2 = 50 % |"), "{s}");
+        assert!(s.contains("1 mechanism datasets at ENR >= 2 have no shadow"), "{s}");
     }
 
     #[test]
