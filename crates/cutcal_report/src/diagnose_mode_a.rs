@@ -110,14 +110,13 @@ pub(crate) fn mode_a(
             let kept: Vec<cutcal_model::CuttingTest> =
                 measured.iter().filter(|t| !sm.unsolved.iter().any(|(id, _)| *id == t.id)).cloned().collect();
             if 2 * kept.len() < measured.len() {
-                cfg.simulator_notes.push(format!(
+                let why = format!(
                     "the fitted shadow has a solution at only {} of {} tests; only output-level mechanisms are \
                      testable, on every test",
                     kept.len(),
                     measured.len()
-                ));
-                let fixed = FixedSimulation::new(entries, conditions >= 3)?;
-                return Ok(diagnose(&fixed, measured, &cfg)?);
+                );
+                return external_only(entries, measured, cfg, why, conditions);
             }
             // A test without a shadow solution has no signature for any knob, nuisance or mechanism:
             // it could only add a residual that no hypothesis moves, so it is left out (when most
@@ -133,10 +132,21 @@ pub(crate) fn mode_a(
             Ok(report)
         }
         Err(e) => {
-            cfg.simulator_notes
-                .push(format!("the shadow model could not be built ({e}); only output-level mechanisms are testable"));
-            let sim = FixedSimulation::new(entries, conditions >= 3)?;
-            Ok(diagnose(&sim, measured, &cfg)?)
+            let why = format!("the shadow model could not be built ({e}); only output-level mechanisms are testable");
+            external_only(entries, measured, cfg, why, conditions)
         }
     }
+}
+
+/// The diagnosis on the external numbers alone (no shadow signatures), with the reason noted.
+fn external_only(
+    entries: Vec<(String, Prediction)>,
+    measured: &[cutcal_model::CuttingTest],
+    mut cfg: Config,
+    why: String,
+    conditions: usize,
+) -> Result<Report> {
+    cfg.simulator_notes.push(why);
+    let sim = FixedSimulation::new(entries, conditions >= 3)?;
+    Ok(diagnose(&sim, measured, &cfg)?)
 }

@@ -56,6 +56,10 @@ impl Outcome {
     fn named(&self) -> bool {
         self.ok() && self.selected.contains(&self.hidden)
     }
+    /// At ENR >= 2, where the headline figures are taken.
+    fn strong(&self) -> bool {
+        self.enr.unwrap_or(0.0) >= 2.0
+    }
     /// Named with nothing else beside it.
     fn named_alone(&self) -> bool {
         self.named() && self.selected.len() == 1
@@ -144,7 +148,7 @@ fn misses_by_cause(s: &mut String, mech: &[&Outcome]) {
         let _ =
             writeln!(s, "| {label} | {missed}/{} | {} | {} | {} | {} | {} |", rows.len(), c[0], c[1], c[2], c[3], c[4]);
     };
-    let strong = |o: &&&Outcome| o.enr.unwrap_or(0.0) >= 2.0;
+    let strong = |o: &&&Outcome| o.strong();
     for id in MECHANISMS {
         row(id, mech.iter().filter(strong).filter(|o| o.hidden == id).collect(), &mut total);
     }
@@ -171,7 +175,7 @@ fn by_shadow_fidelity(s: &mut String, mech: &[&Outcome], nulls: &[&Outcome]) {
         [(0.0, 3.0, "below 3 %"), (3.0, 6.0, "3-6 %"), (6.0, 10.0, "6-10 %"), (10.0, f64::INFINITY, "10 % and above")];
     for (lo, hi, label) in bins {
         let inside = |o: &&&Outcome| o.shadow_rms_pct.is_some_and(|r| (lo..hi).contains(&r));
-        let m: Vec<&&Outcome> = mech.iter().filter(|o| o.enr.unwrap_or(0.0) >= 2.0).filter(inside).collect();
+        let m: Vec<&&Outcome> = mech.iter().filter(|o| o.strong()).filter(inside).collect();
         let n: Vec<&&Outcome> = nulls.iter().filter(inside).collect();
         let _ = writeln!(
             s,
@@ -180,7 +184,7 @@ fn by_shadow_fidelity(s: &mut String, mech: &[&Outcome], nulls: &[&Outcome]) {
             pct(n.iter().filter(|o| o.ok() && o.selected.is_empty()).count(), n.len())
         );
     }
-    let none = mech.iter().filter(|o| o.enr.unwrap_or(0.0) >= 2.0 && o.shadow_rms_pct.is_none()).count();
+    let none = mech.iter().filter(|o| o.strong() && o.shadow_rms_pct.is_none()).count();
     if none > 0 {
         let _ = writeln!(s, "\n{none} mechanism datasets at ENR >= 2 have no shadow (or no report).");
     }
@@ -258,7 +262,7 @@ pub fn summarise(family: &str, outcomes: &[Outcome]) -> (String, Headline) {
         .iter()
         .filter(|o| MECHANISMS.contains(&o.hidden.as_str()) && o.status != "generation_failed")
         .collect();
-    let strong = |o: &&&Outcome| o.enr.unwrap_or(0.0) >= 2.0;
+    let strong = |o: &&&Outcome| o.strong();
     let n2 = mech.iter().filter(strong).count();
     let k2 = mech.iter().filter(strong).filter(|o| o.named()).count();
     let kall = mech.iter().filter(|o| o.named()).count();
@@ -289,7 +293,7 @@ pub fn summarise(family: &str, outcomes: &[Outcome]) -> (String, Headline) {
     let _ = writeln!(s, "|---|---|---|---|---|---|");
     for id in MECHANISMS {
         let rows: Vec<&&Outcome> = mech.iter().filter(|o| o.hidden == id).collect();
-        let st: Vec<&&&Outcome> = rows.iter().filter(|o| o.enr.unwrap_or(0.0) >= 2.0).collect();
+        let st: Vec<&&&Outcome> = rows.iter().filter(|o| o.strong()).collect();
         let in_set = rows.iter().filter(|o| o.ok() && (o.named() || o.ambiguous_with.contains(&o.hidden))).count();
         let bo: Vec<&&Outcome> = rows.iter().copied().filter(|o| beyond(o)).collect();
         let _ = writeln!(
