@@ -84,13 +84,18 @@ pub(crate) fn mode_a(
             let sm = sim.summary();
             cfg.simulator_notes.push(format!(
                 "shadow of the external simulation: cutcal's extended Oxley model on {} thermal data, JC A {:.0} MPa, \
-                 B {:.0} MPa, n {:.3}, C {:.4}, m {:.2} fitted to it (RMS {:.1} %{}{})",
+                 B {:.0} MPa, n {:.3}, C {:.4}, m {:.2}{} fitted to it (RMS {:.1} %{}{})",
                 sm.material,
                 sm.jc.a_pa / 1e6,
                 sm.jc.b_pa / 1e6,
                 sm.jc.n,
                 sm.jc.c,
                 sm.jc.m,
+                if sm.friction_factor < 1.0 {
+                    format!(", tool-chip interface factor m_f {:.2} (tau_int = m_f k_chip)", sm.friction_factor)
+                } else {
+                    String::new()
+                },
                 sm.rms_pct,
                 if sm.converged { "" } else { "; the shadow fit stopped at its iteration cap" },
                 if sm.fit_discarded {

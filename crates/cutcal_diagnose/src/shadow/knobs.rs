@@ -77,6 +77,9 @@ pub(super) const KNOBS: [Knob; 12] = [
 pub(super) struct Shadow<'a> {
     pub(super) material: &'a Material,
     pub(super) jc: JcParams,
+    /// The shadow's own tool-chip interface factor m_f (tau_int = m_f k_chip; 1 = Oxley's full
+    /// sticking); the friction mechanism's factor multiplies it.
+    pub(super) friction: f64,
 }
 
 impl Shadow<'_> {
@@ -88,13 +91,14 @@ impl Shadow<'_> {
         knob: Option<(Knob, f64)>,
         start: Option<&OxleyPrediction>,
     ) -> Result<([f64; 5], OxleyPrediction), DiagnoseError> {
-        let mut h = Hooks::NEUTRAL;
+        let mut h = Hooks { friction_factor: self.friction, ..Hooks::NEUTRAL };
         let mut options = OxleyOptions::wide();
         let mut scaled: Material;
         let mut material = self.material;
         let mut jc = self.jc;
         match knob {
             Some((Knob::Hook(Hook::FlowMultiplier), u)) => h.flow_multiplier = u.exp(),
+            Some((Knob::Hook(Hook::FrictionFactor), u)) => h.friction_factor = self.friction * u,
             Some((Knob::Hook(k), u)) => h = k.with(h, u),
             Some((Knob::Eta, u)) => options.eta = u,
             // Oxley's psi and the interface heat share both scale dT_M; the share carries the
