@@ -1,9 +1,10 @@
 //! `cargo xtask concealed`: an independent concealed-physics benchmark of `cutcal diagnose`
 //! (issue 10, item 5).
 //!
-//! The generator shares no model code with the detector: two forward models written here from the
+//! The generator shares no model code with the detector: three forward models written here from the
 //! literature (family `a`: Oxley 1989 as in Lalwani et al. 2009, `oxley.rs`; family `b`: Merchant
-//! closure + Zorev contact + Loewen-Shaw temperatures, `merchant.rs`), the hidden mechanisms in
+//! closure + Zorev contact + Loewen-Shaw temperatures, `merchant.rs`; family `c`: minimum-energy
+//! shear angle + Coulomb-Tresca contact + Weiner / Jaeger temperatures, `energy.rs`), the hidden mechanisms in
 //! published forms other than the detector's (`mechanism.rs`), datasets as a user has them
 //! (`dataset.rs`). Each dataset is diagnosed in Mode A exactly as `cutcal diagnose --recordings
 //! recordings.csv --simulation simulation.csv --json` would (the CLI's own argument parser and
@@ -11,10 +12,12 @@
 //! are read from the JSON report. Scores: `score.rs`; the docs page: `page.rs`.
 //!
 //! Output directory: `data/<family>/<NNN>/{recordings,simulation}.csv`, `truth-<family>.json` (sealed:
-//! never read by the diagnosis), `outcomes-<family>.json`, `scores.json`, `summary.md`.
+//! never read by the diagnosis), `outcomes-<family>.json`, `scores.json`, `summary.md`. With
+//! `--generate-only`: `data/` and `truth-<family>.json` only, and a generation summary on stderr.
 
 mod dataset;
 mod detectable;
+mod energy;
 mod material;
 mod mechanism;
 mod merchant;
@@ -38,8 +41,8 @@ use score::Outcome;
 /// Options of the benchmark.
 #[derive(Debug, Clone)]
 pub struct ConcealedOptions {
-    /// Families to run: `a`, `b` or both.
-    pub families: Vec<String>,
+    /// Families to run.
+    pub families: Vec<Family>,
     /// Datasets per family.
     pub datasets: usize,
     /// Seed.
@@ -52,6 +55,54 @@ pub struct ConcealedOptions {
     pub threads: usize,
     /// Force this work material on every dataset (the material-spread check), by name.
     pub material: Option<String>,
+    /// Generate the data and the sealed truth only (no diagnosis, no outcomes, scores or page).
+    pub generate_only: bool,
+}
+
+/// A generator family: `a` (Oxley; the detector may be tuned on it), `b` (Merchant closure, Zorev
+/// contact, Loewen-Shaw temperatures; never tuned on) or `c` (Merchant's minimum-energy shear angle,
+/// Coulomb-Tresca contact, Weiner / Jaeger temperatures, `energy.rs`; never tuned on).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Family {
+    /// Oxley 1989 (`oxley.rs`).
+    A,
+    /// Merchant + Zorev + Loewen-Shaw (`merchant.rs`).
+    B,
+    /// Minimum energy + Coulomb-Tresca + Weiner / Jaeger (`energy.rs`).
+    C,
+}
+
+impl Family {
+    /// `a`, `b` or `c`.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            Self::A => "a",
+            Self::B => "b",
+            Self::C => "c",
+        }
+    }
+
+    /// The families of a `--family` value: `a`, `b`, `c`, `both` (= a and b) or `all` (= a, b, c).
+    pub fn parse_list(s: &str) -> Result<Vec<Self>, String> {
+        Ok(match s {
+            "a" => vec![Self::A],
+            "b" => vec![Self::B],
+            "c" => vec![Self::C],
+            "both" | "ab" => vec![Self::A, Self::B],
+            "all" | "abc" => vec![Self::A, Self::B, Self::C],
+            other => return Err(format!("--family must be a, b, c, both (a and b) or all (got `{other}`)")),
+        })
+    }
+
+    /// Offset of the family's random stream in a dataset's seed: a and b keep the streams they had
+    /// before family c existed (0 and 2^32); c has its own (2^33).
+    pub const fn stream(self) -> u64 {
+        match self {
+            Self::A => 0,
+            Self::B => 1 << 32,
+            Self::C => 2 << 32,
+        }
+    }
 }
 
 /// Kinds of the `n` datasets of a family, in a seeded shuffled order: nulls, each mechanism and each
@@ -107,14 +158,14 @@ fn strings(v: &serde_json::Value, key: &str) -> Vec<String> {
 
 /// Generates, writes and diagnoses one dataset; never drops it.
 fn one(
-    family: &str,
+    family: Family,
     index: usize,
     hidden: &str,
     rank: usize,
     opts: &ConcealedOptions,
 ) -> (Outcome, Option<dataset::Truth>) {
     let mut o = Outcome {
-        family: family.into(),
+        family: family.as_str().into(),
         index,
         hidden: hidden.into(),
         enr: None,
@@ -131,7 +182,7 @@ fn one(
         seconds: 0.0,
     };
     let material = opts.material.as_deref().and_then(material::by_name);
-    let ds = match dataset::generate(family == "b", index, hidden, rank, opts.seed, material) {
+    let ds = match dataset::generate(family, index, hidden, rank, opts.seed, material) {
         Ok(d) => d,
         Err(e) => {
             o.reason = e;
@@ -141,13 +192,17 @@ fn one(
     o.enr = Some(ds.truth.enr);
     o.enr_shape = Some(ds.truth.enr_shape);
     o.enr_beyond_nuisance = ds.truth.enr_beyond_nuisance;
-    let dir = opts.out.join("data").join(family).join(format!("{index:03}"));
+    let dir = opts.out.join("data").join(family.as_str()).join(format!("{index:03}"));
     let (rec, sim) = (dir.join("recordings.csv"), dir.join("simulation.csv"));
     let written = std::fs::create_dir_all(&dir)
         .and_then(|()| std::fs::write(&rec, &ds.recordings))
         .and_then(|()| std::fs::write(&sim, &ds.simulation));
     if let Err(e) = written {
         o.reason = format!("writing {}: {e}", dir.display());
+        return (o, Some(ds.truth));
+    }
+    if opts.generate_only {
+        o.status = "generated".into();
         return (o, Some(ds.truth));
     }
     let t0 = Instant::now();
@@ -178,7 +233,7 @@ fn one(
 }
 
 /// Runs one family; returns its outcomes and truths.
-pub fn run_family(family: &str, opts: &ConcealedOptions, quiet: bool) -> (Vec<Outcome>, Vec<dataset::Truth>) {
+pub fn run_family(family: Family, opts: &ConcealedOptions, quiet: bool) -> (Vec<Outcome>, Vec<dataset::Truth>) {
     let ks = kinds(opts.datasets, opts.seed);
     let jobs: Vec<(usize, &str, usize)> =
         ks.iter().enumerate().map(|(i, k)| (i, k.as_str(), ks[..i].iter().filter(|x| *x == k).count())).collect();
@@ -189,7 +244,7 @@ pub fn run_family(family: &str, opts: &ConcealedOptions, quiet: bool) -> (Vec<Ou
             let r = one(family, i, k, rank, opts);
             let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             if !quiet && ((d - 1) % 10 == 9 || d == jobs.len()) {
-                eprintln!("family {family}: {d}/{} datasets", jobs.len());
+                eprintln!("family {}: {d}/{} datasets", family.as_str(), jobs.len());
             }
             r
         })
@@ -200,10 +255,8 @@ pub fn run_family(family: &str, opts: &ConcealedOptions, quiet: bool) -> (Vec<Ou
 
 /// `cargo xtask concealed`.
 pub fn run(opts: &ConcealedOptions) -> Result<()> {
-    for f in &opts.families {
-        if f != "a" && f != "b" {
-            bail!("--family must be a, b or both (got `{f}`)");
-        }
+    if opts.families.is_empty() {
+        bail!("no family to run");
     }
     if opts.datasets == 0 {
         bail!("--datasets must be at least 1");
@@ -218,13 +271,21 @@ pub fn run(opts: &ConcealedOptions) -> Result<()> {
     let t0 = Instant::now();
     let mut sections = Vec::new();
     let mut heads = Vec::new();
-    for f in &opts.families {
-        let (outcomes, truths) = pool.install(|| run_family(f, opts, false));
+    for &fam in &opts.families {
+        let f = fam.as_str();
+        let (outcomes, truths) = pool.install(|| run_family(fam, opts, false));
         std::fs::write(opts.out.join(format!("truth-{f}.json")), serde_json::to_string_pretty(&truths)?)?;
+        if opts.generate_only {
+            eprint!("{}", generation_summary(f, &outcomes));
+            continue;
+        }
         std::fs::write(opts.out.join(format!("outcomes-{f}.json")), serde_json::to_string_pretty(&outcomes)?)?;
         let (text, head) = score::summarise(f, &outcomes);
-        sections.push((f.clone(), text));
+        sections.push((fam, text));
         heads.push(head);
+    }
+    if opts.generate_only {
+        return Ok(());
     }
     let md = page::render(opts, &sections, t0.elapsed().as_secs_f64());
     std::fs::write(opts.out.join("summary.md"), &md)?;
@@ -236,12 +297,62 @@ pub fn run(opts: &ConcealedOptions) -> Result<()> {
     Ok(())
 }
 
+/// The generation summary of one family (`--generate-only`): datasets per kind, generation failures
+/// with their reasons, and per mechanism the count at ENR >= 2 and the median ENR and ENR beyond
+/// nuisance.
+fn generation_summary(family: &str, outcomes: &[Outcome]) -> String {
+    let median = |mut v: Vec<f64>| -> String {
+        v.sort_by(f64::total_cmp);
+        match v.len() {
+            0 => "-".into(),
+            n if n % 2 == 1 => format!("{:.2}", v[n / 2]),
+            n => format!("{:.2}", 0.5 * (v[n / 2 - 1] + v[n / 2])),
+        }
+    };
+    let failed: Vec<&Outcome> = outcomes.iter().filter(|o| o.status == "generation_failed").collect();
+    let mut s = format!(
+        "family {family}: {} datasets, {} generated, {} generation failures\n",
+        outcomes.len(),
+        outcomes.len() - failed.len(),
+        failed.len()
+    );
+    for o in &failed {
+        s.push_str(&format!("  failed {:03} {}: {}\n", o.index, o.hidden, o.reason));
+    }
+    s.push_str("  kind                 n  failed  ENR>=2  median ENR  median ENR beyond nuisance\n");
+    let kinds = std::iter::once("null").chain(MECHANISMS).chain(DECOYS);
+    for k in kinds {
+        let of: Vec<&Outcome> = outcomes.iter().filter(|o| o.hidden == k).collect();
+        let ok: Vec<&&Outcome> = of.iter().filter(|o| o.status != "generation_failed").collect();
+        let strong = ok.iter().filter(|o| o.enr.is_some_and(|e| e >= 2.0)).count();
+        s.push_str(&format!(
+            "  {k:<18} {:>3} {:>7} {:>7} {:>11} {:>27}\n",
+            of.len(),
+            of.len() - ok.len(),
+            strong,
+            median(ok.iter().filter_map(|o| o.enr).collect()),
+            median(ok.iter().filter_map(|o| o.enr_beyond_nuisance).collect()),
+        ));
+    }
+    s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn rows(csv: &str) -> Vec<Vec<String>> {
         csv.lines().skip(1).map(|l| l.split(',').map(str::to_string).collect()).collect()
+    }
+
+    #[test]
+    fn family_flags_and_streams() {
+        assert_eq!(Family::parse_list("both").unwrap(), [Family::A, Family::B]);
+        assert_eq!(Family::parse_list("all").unwrap(), [Family::A, Family::B, Family::C]);
+        assert_eq!(Family::parse_list("c").unwrap(), [Family::C]);
+        assert!(Family::parse_list("d").is_err());
+        // a and b keep the seed streams they had before family c (0 and 2^32).
+        assert_eq!([Family::A.stream(), Family::B.stream(), Family::C.stream()], [0, 1 << 32, 1 << 33]);
     }
 
     #[test]
@@ -260,9 +371,9 @@ mod tests {
     #[test]
     fn generator_invariants_on_a_few_datasets() {
         let p = Path::new("t.csv");
-        for fam_b in [false, true] {
+        for fam in [Family::A, Family::B, Family::C] {
             for (i, hidden) in ["null", "edge_ploughing", "size_effect", "decoy:gain"].iter().enumerate() {
-                let d = dataset::generate(fam_b, i, hidden, 0, 11, None).unwrap();
+                let d = dataset::generate(fam, i, hidden, 0, 11, None).unwrap();
                 // The CLI's readers accept both files.
                 let tests = cutcal_io::tests_csv::parse_tests(p, &d.recordings).unwrap();
                 let sims = cutcal_io::simulation_csv::parse_simulation(p, &d.simulation).unwrap();

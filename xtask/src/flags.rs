@@ -33,7 +33,8 @@ pub struct SignalsFlags {
 /// Options of `cargo xtask concealed`.
 #[derive(Debug, clap::Args)]
 pub struct ConcealedFlags {
-    /// Generator family: `a` (the detector may be tuned on it), `b` (never tuned on) or `both`.
+    /// Generator family: `a` (the detector may be tuned on it), `b` or `c` (never tuned on), `both`
+    /// (a and b) or `all` (a, b and c).
     #[arg(long, default_value = "both")]
     pub family: String,
     /// Number of datasets per family.
@@ -55,6 +56,10 @@ pub struct ConcealedFlags {
     /// Ti6Al4V, AA2024-T351, OFHC-Cu, Nickel200). The benchmark's figures use the default draw.
     #[arg(long)]
     pub material: Option<String>,
+    /// Generate data/, truth-<family>.json and the generation-failure count only: no diagnosis, no
+    /// outcomes, scores or page; a generation summary on stderr.
+    #[arg(long)]
+    pub generate_only: bool,
 }
 
 /// Options of `cargo xtask pipeline`.

@@ -28,18 +28,20 @@ fn main() -> ExitCode {
     let result = match flags.task {
         flags::Task::Pipeline(f) => pipeline::run(&f),
         flags::Task::Signals(f) => signals::run(&f.out),
-        flags::Task::Concealed(f) => concealed::run(&concealed::ConcealedOptions {
-            families: match f.family.as_str() {
-                "both" | "ab" => vec!["a".into(), "b".into()],
-                one => vec![one.to_string()],
-            },
-            datasets: f.datasets,
-            seed: f.seed,
-            out: f.out,
-            markdown: f.markdown,
-            threads: f.threads,
-            material: f.material,
-        }),
+        flags::Task::Concealed(f) => {
+            concealed::Family::parse_list(&f.family).map_err(anyhow::Error::msg).and_then(|families| {
+                concealed::run(&concealed::ConcealedOptions {
+                    families,
+                    datasets: f.datasets,
+                    seed: f.seed,
+                    out: f.out,
+                    markdown: f.markdown,
+                    threads: f.threads,
+                    material: f.material,
+                    generate_only: f.generate_only,
+                })
+            })
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

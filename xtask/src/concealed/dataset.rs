@@ -20,7 +20,7 @@ use serde::Serialize;
 
 use super::material::{Cond, Consts, Material, Solution, MATERIALS};
 use super::mechanism::{self, Mods, Shape};
-use super::{detectable, merchant, oxley};
+use super::{detectable, energy, merchant, oxley, Family};
 
 /// Standard normal deviate (Box-Muller).
 pub fn std_normal(rng: &mut ChaCha8Rng) -> f64 {
@@ -30,13 +30,13 @@ pub fn std_normal(rng: &mut ChaCha8Rng) -> f64 {
 }
 
 /// Solves one condition with family `a` (Oxley, on the shear-angle branch of `phi_hint` when given:
-/// [`oxley::solve_near`]) or `b` (Merchant + Zorev + Loewen-Shaw, its own solver; the hint is not
-/// used).
-pub fn solve(family_b: bool, c: &Cond, k: &Consts, m: &Mods, phi_hint: Option<f64>) -> Result<Solution, String> {
-    if family_b {
-        merchant::solve(c, k, m)
-    } else {
-        oxley::solve_near(c, k, m, phi_hint)
+/// [`oxley::solve_near`]), `b` (Merchant + Zorev + Loewen-Shaw, its own solver) or `c` (minimum
+/// energy + Coulomb-Tresca + Weiner / Jaeger, [`energy::solve`]); b and c do not use the hint.
+pub fn solve(family: Family, c: &Cond, k: &Consts, m: &Mods, phi_hint: Option<f64>) -> Result<Solution, String> {
+    match family {
+        Family::A => oxley::solve_near(c, k, m, phi_hint),
+        Family::B => merchant::solve(c, k, m),
+        Family::C => energy::solve(c, k, m),
     }
 }
 
@@ -45,7 +45,7 @@ pub fn solve(family_b: bool, c: &Cond, k: &Consts, m: &Mods, phi_hint: Option<f6
 pub struct Truth {
     /// Dataset index within its family.
     pub index: usize,
-    /// `a` or `b`.
+    /// `a`, `b` or `c`.
     pub family: String,
     /// `null`, a mechanism id or a decoy.
     pub hidden: String,
@@ -189,22 +189,21 @@ pub fn enr(with: &[[f64; 4]], without: &[[f64; 4]], noise: &[f64; 4], outs: usiz
     ((raw / cnt as f64).sqrt(), (c / cnt as f64).sqrt())
 }
 
-/// Generates dataset `index` of `family_b`, hiding `hidden`; `rank` is its rank among datasets of the
+/// Generates dataset `index` of `family`, hiding `hidden`; `rank` is its rank among datasets of the
 /// same kind (sets the target ENR).
 ///
 /// `material` forces the work material (the material-spread check); `None` draws it from
 /// [`MATERIALS`].
 pub fn generate(
-    family_b: bool,
+    family: Family,
     index: usize,
     hidden: &str,
     rank: usize,
     seed: u64,
     material: Option<&'static Material>,
 ) -> Result<Dataset, String> {
-    let mut rng = ChaCha8Rng::seed_from_u64(
-        seed ^ (index as u64 + if family_b { 1 << 32 } else { 0 }).wrapping_mul(0x9E37_79B9_7F4A_7C15),
-    );
+    let mut rng =
+        ChaCha8Rng::seed_from_u64(seed ^ (index as u64 + family.stream()).wrapping_mul(0x9E37_79B9_7F4A_7C15));
     let drawn = rng.gen_range(0..MATERIALS.len());
     let mat = material.unwrap_or(&MATERIALS[drawn]);
     let d = design(&mut rng, mat, hidden == "built_up_edge");
@@ -239,9 +238,9 @@ pub fn generate(
     let mut base = Vec::with_capacity(n);
     let mut without = Vec::with_capacity(n);
     for c in &d.conds {
-        let s = solve(family_b, c, &nominal, &Mods::none(), None)?;
+        let s = solve(family, c, &nominal, &Mods::none(), None)?;
         sim.push(edge(&s, c, r0));
-        let b = solve(family_b, c, &truth_k, &Mods::none(), None)?;
+        let b = solve(family, c, &truth_k, &Mods::none(), None)?;
         without.push(edge(&b, c, r0));
         base.push(b);
     }
@@ -262,8 +261,8 @@ pub fn generate(
         let mut out = Vec::with_capacity(n);
         for (i, c) in d.conds.iter().enumerate() {
             let sol = if in_model.contains(&hidden) {
-                let m = mechanism::mods(family_b, hidden, s, &shape, c, &base[i], t_gate);
-                solve(family_b, c, &truth_k, &m, Some(base[i].phi))?
+                let m = mechanism::mods(family, hidden, s, &shape, c, &base[i], t_gate);
+                solve(family, c, &truth_k, &m, Some(base[i].phi))?
             } else {
                 base[i]
             };
@@ -287,7 +286,7 @@ pub fn generate(
     };
     let (mut with, mut strength, mut at_bound) = (without.clone(), None, false);
     if let Some(t) = target {
-        let (lo, hi) = mechanism::strength_range(hidden);
+        let (lo, hi) = mechanism::strength_range(family, hidden);
         let (mut a, mut b) = (lo.ln(), hi.ln());
         let mut best: Option<(f64, f64, Vec<[f64; 4]>)> = None;
         match with_at(hi) {
@@ -357,7 +356,7 @@ pub fn generate(
         Some(0.0)
     } else {
         detectable::enr_beyond_nuisance(
-            family_b, &d.conds, &nominal, &truth_k, &base, &with, &without, &noise, outs, &recorded,
+            family, &d.conds, &nominal, &truth_k, &base, &with, &without, &noise, outs, &recorded,
         )
     };
     // Noise, then the files.
@@ -417,7 +416,7 @@ pub fn generate(
     }
     let truth = Truth {
         index,
-        family: if family_b { "b" } else { "a" }.into(),
+        family: family.as_str().into(),
         hidden: hidden.into(),
         material: mat.name.into(),
         conditions: n,

@@ -20,6 +20,7 @@
 use super::dataset::solve;
 use super::material::{Cond, Consts, Solution};
 use super::mechanism::Mods;
+use super::Family;
 
 /// Relative step of the finite differences.
 const STEP: f64 = 0.01;
@@ -90,7 +91,7 @@ pub fn bounded_lsq(cols: &[Vec<f64>], d: &[f64], lo: &[f64], hi: &[f64]) -> f64 
 /// included).
 #[allow(clippy::too_many_arguments)]
 pub fn enr_beyond_nuisance(
-    family_b: bool,
+    family: Family,
     conds: &[Cond],
     nominal: &Consts,
     truth: &Consts,
@@ -113,7 +114,7 @@ pub fn enr_beyond_nuisance(
         scale(&mut k, 1.0 + STEP);
         let mut col = Vec::with_capacity(d.len());
         for (i, c) in conds.iter().enumerate() {
-            let s = solve(family_b, c, &k, &Mods::none(), Some(base[i].phi)).ok()?;
+            let s = solve(family, c, &k, &Mods::none(), Some(base[i].phi)).ok()?;
             let y = edge(&s, c);
             for o in 0..outputs {
                 col.push((y[o] / without[i][o]).ln() / (1.0 + STEP).ln() / noise[o]);
@@ -161,7 +162,7 @@ mod tests {
             .collect();
         let out = |s: &Solution, _: &Cond| [s.fc, s.ft, s.tc, s.t_int];
         let base: Vec<Solution> =
-            conds.iter().map(|c| solve(false, c, &nominal, &Mods::none(), None).unwrap()).collect();
+            conds.iter().map(|c| solve(Family::A, c, &nominal, &Mods::none(), None).unwrap()).collect();
         let without: Vec<[f64; 4]> = base.iter().zip(&conds).map(|(s, c)| out(s, c)).collect();
         let noise = [0.03, 0.03, 0.03, 0.04];
         let run = |f: f64| {
@@ -171,11 +172,12 @@ mod tests {
             let with: Vec<[f64; 4]> = conds
                 .iter()
                 .zip(&base)
-                .map(|(c, b)| out(&solve(false, c, &k, &Mods::none(), Some(b.phi)).unwrap(), c))
+                .map(|(c, b)| out(&solve(Family::A, c, &k, &Mods::none(), Some(b.phi)).unwrap(), c))
                 .collect();
             let raw = super::super::dataset::enr(&with, &without, &noise, 3).0;
-            let left = enr_beyond_nuisance(false, &conds, &nominal, &nominal, &base, &with, &without, &noise, 3, &out)
-                .unwrap();
+            let left =
+                enr_beyond_nuisance(Family::A, &conds, &nominal, &nominal, &base, &with, &without, &noise, 3, &out)
+                    .unwrap();
             (raw, left)
         };
         let (raw3, left3) = run(1.03);

@@ -6,9 +6,9 @@
 //! |---|---|---|
 //! | edge_ploughing | Albrecht 1960: pressure p = (1 + pi/2) k and friction m_e k on the rounded edge below the stagnation point | Waldorf, DeVor & Kapoor 1998 slip-line |
 //! | flank_wear | uniform normal and shear stress on the land (Teitenberg, Bayoumi & Yucesan 1992), VB growing with cumulative cut length at a Taylor-type speed exponent | Smithey, Kapoor & DeVor 2001, VB linear in order |
-//! | tool_chip_friction | Zorev 1963 stick-slip with a power-law normal stress and a sliding-speed dependent mu | m_f0 (V/V_ref)^-p_v on k_chip |
+//! | tool_chip_friction | Zorev 1963 stick-slip with a power-law normal stress and a sliding-speed dependent mu (family c: replacing its Coulomb-Tresca law, Zorev's a = 0) | m_f0 (V/V_ref)^-p_v on k_chip |
 //! | thermal_softening | extra Zerilli-Armstrong exponential thermal factor exp(-c3 (T - Tr)) | kappa_T on (T - T_w) and a scale on the JC m |
-//! | heat_partition | family a: Loewen & Shaw 1954 shear-plane partition and tool share of the frictional heat blended in; family b: Boothroyd 1963 and all frictional heat to the chip blended in | scale on Boothroyd beta and a constant interface share |
+//! | heat_partition | family a: Loewen & Shaw 1954 shear-plane partition and tool share of the frictional heat blended in; family b: Boothroyd 1963 and all frictional heat to the chip blended in; family c: Boothroyd 1963 (from Weiner 1955) and the Loewen-Shaw tool share blended in | scale on Boothroyd beta and a constant interface share |
 //! | size_effect | Kienzle 1952 power law (h / h_ref)^-m_s on the flow stress | Nix-Gao sqrt(1 + l/h) |
 //! | built_up_edge | rake shift gated by the interface temperature (Trent & Wright 2000) | rake shift gated by a logistic in speed |
 //! | force_crosstalk | full 2x2 channel matrix (dynamometer cross-sensitivity) | Ft += c Fc |
@@ -17,6 +17,7 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use super::material::{Cond, Solution};
+use super::Family;
 
 /// The eight library ids (exact spelling of the detector's report).
 pub const MECHANISMS: [&str; 8] = [
@@ -70,8 +71,8 @@ pub struct Mods {
     pub exp_softening: f64,
     /// Blend towards the other family's heat partition: 0 = the model's own.
     pub partition_blend: f64,
-    /// Interface friction law: family a multiplies k_chip by 1 - blend (1 - its factor); family b
-    /// replaces its own law.
+    /// Interface friction law: family a multiplies k_chip by 1 - blend (1 - its factor); families b
+    /// and c replace their own law.
     pub friction: Option<Zorev>,
     /// Family a: how much of the Zorev reduction applies (0 = Oxley's full sticking).
     pub friction_blend: f64,
@@ -184,11 +185,15 @@ impl Shape {
 }
 
 /// Range of the strength s searched for a target effect-to-noise ratio, and its unit:
-/// edge radius (m), final VB (m), friction (family a: share of the Zorev reduction; family b: mu
-/// lowered by 60 s % and made speed-dependent), exponential softening c3 (Tm - Tr), partition blend (0 = the model's own,
-/// 1 = the other partition), Kienzle exponent, BUE rake shift (rad), channel-matrix scale.
-pub fn strength_range(id: &str) -> (f64, f64) {
+/// edge radius (m), final VB (m), friction (family a: share of the Zorev reduction; families b and
+/// c: mu lowered by 60 s % and made speed-dependent, c's Zorev exponent a growing from 0), exponential
+/// softening c3 (Tm - Tr), partition blend (0 = the model's own, 1 = the other partition; family c
+/// to 2, as far again beyond it: its Coulomb-Tresca contact passes the interface temperature to the
+/// forces only where the Tresca limit binds, and at a blend of 1 most steel datasets stayed below
+/// ENR 2), Kienzle exponent, BUE rake shift (rad), channel-matrix scale.
+pub fn strength_range(family: Family, id: &str) -> (f64, f64) {
     match id {
+        "heat_partition" if family == Family::C => (0.02, 2.0),
         "edge_ploughing" => (2e-6, 80e-6),
         "flank_wear" => (0.01e-3, 0.4e-3),
         "tool_chip_friction" => (0.01, 1.0),
@@ -204,17 +209,27 @@ pub fn strength_range(id: &str) -> (f64, f64) {
 /// Nominal friction of family b (its own Zorev contact): mu 0.6, no speed dependence, a = 3.
 pub const FAMILY_B_FRICTION: Zorev = Zorev { mu0: 0.6, q: 0.0, a: 3.0 };
 
+/// Friction coefficient of family c's hybrid Coulomb-Tresca contact, tau = min(mu sigma_N, k_chip).
+pub const FAMILY_C_MU: f64 = 0.5;
+
 /// The in-model hooks of mechanism `id` at strength `s` for one condition. `t_gate` is the BUE
 /// gate temperature of the dataset and `base` the condition's solution without the mechanism.
-pub fn mods(family_b: bool, id: &str, s: f64, shape: &Shape, c: &Cond, base: &Solution, t_gate: f64) -> Mods {
+pub fn mods(family: Family, id: &str, s: f64, shape: &Shape, c: &Cond, base: &Solution, t_gate: f64) -> Mods {
     let mut m = Mods::none();
     match id {
         "tool_chip_friction" => {
-            m.friction = Some(if family_b {
-                Zorev { mu0: FAMILY_B_FRICTION.mu0 * (1.0 - 0.6 * s), q: shape.zorev_q * s, a: FAMILY_B_FRICTION.a }
-            } else {
-                m.friction_blend = s;
-                Zorev { mu0: shape.zorev_mu0, q: shape.zorev_q, a: shape.zorev_a }
+            m.friction = Some(match family {
+                Family::A => {
+                    m.friction_blend = s;
+                    Zorev { mu0: shape.zorev_mu0, q: shape.zorev_q, a: shape.zorev_a }
+                }
+                Family::B => {
+                    Zorev { mu0: FAMILY_B_FRICTION.mu0 * (1.0 - 0.6 * s), q: shape.zorev_q * s, a: FAMILY_B_FRICTION.a }
+                }
+                // Zorev's law with a = 0 (uniform normal stress) is family c's own Coulomb-Tresca law
+                // min(mu sigma_N, k_chip): at s = 0 the mechanism is off, at s = 1 it is Zorev's
+                // stick-slip (a 2-4) with mu lowered by 60 % and speed-dependent.
+                Family::C => Zorev { mu0: FAMILY_C_MU * (1.0 - 0.6 * s), q: shape.zorev_q * s, a: shape.zorev_a * s },
             });
         }
         "thermal_softening" => m.exp_softening = shape.soften_sign * s,

@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use super::ConcealedOptions;
+use super::{ConcealedOptions, Family};
 
 const INTRO: &str = r#"# Concealed-physics benchmark (`cargo xtask concealed`)
 
@@ -16,7 +16,9 @@ material file); only `verdict`, `selected`, `ambiguous_with`, `fit.before/after.
 `shadow_rms_pct` (for the table of naming by the shadow's fit) are read.
 
 **Family `a` is the family the detector may be tuned on; family `b` is never tuned on, and only its
-figures may be quoted in the README.**
+figures may be quoted in the README. Family `c` is never tuned on either: its data are generated
+(`--generate-only`: data, sealed truth and a generation summary, no diagnosis) but the detector is
+run on it once only, after the detector change of the thirteenth session was decided.**
 
 ## Generator forward models
 
@@ -24,6 +26,7 @@ figures may be quoted in the README.**
 |---|---|---|
 | a | Oxley's machining theory with a JC flow stress: primary zone with strain-rate constant C0, secondary zone thickness ratio delta, T_AB = T_w + eta dT_SZ, T_int = T_w + dT_SZ + psi dT_M, Boothroyd partition; phi from tau_int = k_chip, C0 from sigma'_N = sigma_N, delta minimising Fc; own nested bisection / golden-section solver, every loop capped; a hidden in-model mechanism is solved on the shear-angle branch of the mechanism-free solution (the root nearest its phi), so that its effect is never a jump to another root of Oxley's closure | Oxley 1989 (*Mechanics of Machining*); Lalwani, Mehta & Jain 2009 (J. Mater. Process. Technol. 209, 5305); Boothroyd 1963 |
 | b | Shear-plane model: Merchant's generalised closure 2 phi + lambda - a = 75 deg; primary zone of thickness 25 um (h / 0.1 mm)^0.5; Zorev stick-slip contact (mu 0.6, power-law normal stress, a = 3) on Poletika's contact length l_c = h zeta^1.5; Loewen-Shaw shear-plane and interface temperatures (Jaeger moving band source in the chip, disc source in the tool); JC flow stress | Merchant 1945 (J. Appl. Phys. 16); Zorev 1963; Poletika 1969 via Astakhov 1999; Loewen & Shaw 1954 (Trans. ASME 76, 217); Jaeger 1942; Carslaw & Jaeger 1959 |
+| c | Minimum-energy shear plane (`energy.rs`): phi minimises Fc over 5-50 deg (scan + golden section) at the solution's friction angle, with the JC flow stress's full dependence on strain, strain rate and temperature inside Fc(phi); lambda from the contact at that phi (outer Illinois root, capped); primary zone of thickness l_AB / C0, C0 = 6 fixed, exit strain gamma / sqrt3, rate V_s / (sqrt3 Delta); hybrid Coulomb-Tresca contact tau = min(mu sigma_N, k_chip), mu = 0.5, on Klushin's contact length l_c = h (zeta (1 - tan a) + sec a), tan(lambda) = tau / sigma_N by bisection; Weiner shear-plane partition (plane source moving through the work, conduction along the motion neglected; closed form derived here), T_s = T_w + eta dT_s; all frictional heat into the chip as Jaeger's moving band source in its maximum form 2 q sqrt(kappa l_c / (pi V_c)) / K, T_int = T_w + dT_s + psi dT_chip (bisection in T_int) | Merchant 1945 (J. Appl. Phys. 16, 267); Oxley & Welsh 1963 (C0); Klushin 1958 via Astakhov 1999 / 2006; Abaqus shear stress limit, DEFORM hybrid friction; Weiner 1955 (Trans. ASME 77, 1331); Jaeger 1942 (Proc. R. Soc. N.S.W. 76, 203); Carslaw & Jaeger 1959 |
 
 Check against a published value (unit test `oxley::tests::lalwani_2009_aisi1045_case_1`): AISI 1045,
 200 m/min, h 0.15 mm, rake -7 deg, w 1.6 mm; Lalwani 2009 predict Fc 576 N, Ft 364 N, t_c 0.43 mm,
@@ -32,8 +35,10 @@ T_int 942 degC; family `a` gives 567 N, 342 N, 0.409 mm, 957 degC.
 Materials (JC set; thermal constants): AISI 1045 (Jaspers & Dautzenberg 2002; Lalwani 2009 rho,
 cp(T), K(T)), AISI 4340 (Johnson & Cook 1985, with their rho and cp; K from ASM Handbook Vol. 1),
 Ti6Al4V (Lee & Lin 1998; Boyer, Welsch & Collings 1994, linearised; 20-60 m/min and h <= 0.15 mm,
-where Oxley's closure keeps a physical shear angle for this alloy). A solution with a chip ratio
-above 8 is a generation failure, counted and reported, never data.
+where Oxley's closure keeps a physical shear angle for this alloy; family `c` solves the same range,
+unit test `energy::tests::family_c_solves_ti6al4v_in_its_range`). A solution with a chip ratio
+above 8 is a generation failure, counted and reported, never data; in family `c` so is a
+minimum-energy shear angle within 0.5 deg of either end of its range.
 
 ## Mechanisms: generator form against the detector's
 
@@ -41,9 +46,9 @@ above 8 is a generation failure, counted and reported, never data.
 |---|---|---|
 | edge_ploughing | Albrecht 1960 (ASME J. Eng. Ind. 82, 348): pressure (1 + pi/2) k and friction m_e k on the rounded edge from the stagnation point (50-70 deg) to the flank contact (5-15 deg), k = primary shear flow stress; the simulation is run sharp | Waldorf, DeVor & Kapoor 1998 slip-line, one edge-radius parameter |
 | flank_wear | uniform normal (0.6-1.2 k) and shear (mu 0.3-0.5) stress on the land (Teitenberg, Bayoumi & Yucesan 1992, Wear 154, 287); VB grows with cumulative cut length at a Taylor-type speed exponent 1/n_T - 1, n_T 0.3-0.5 (Taylor 1907) | Smithey, Kapoor & DeVor 2001 wear land, VB linear in test order (or measured VB) |
-| tool_chip_friction | Zorev 1963 stick-slip, normal stress (1 - x/l_c)^a, mu(V_c) = mu0 V_c^-q (sliding-speed friction, Rech, Claudin & D'Eramo 2009); family a: Oxley's tau_int = k_chip becomes k_chip (1 - s (1 - zeta_Zorev)), mu0 0.3-0.8; family b: its own mu lowered and made speed-dependent | interface factor m_f0 (V/V_ref)^-p_v on k_chip |
+| tool_chip_friction | Zorev 1963 stick-slip, normal stress (1 - x/l_c)^a, mu(V_c) = mu0 V_c^-q (sliding-speed friction, Rech, Claudin & D'Eramo 2009); family a: Oxley's tau_int = k_chip becomes k_chip (1 - s (1 - zeta_Zorev)), mu0 0.3-0.8; family b: its own mu lowered and made speed-dependent; family c: its Coulomb-Tresca law (Zorev's law with a = 0) replaced by Zorev's with mu0 = 0.5 (1 - 0.6 s), q = s q_shape, a = s a_shape (2-4) | interface factor m_f0 (V/V_ref)^-p_v on k_chip |
 | thermal_softening | extra Zerilli-Armstrong exponential thermal factor exp(-+s T*) on the JC stress (Zerilli & Armstrong 1987) | kappa_T on (T - T_w) in the JC thermal term and a scale on the JC exponent m |
-| heat_partition | family a: Loewen & Shaw 1954 shear-plane partition R1 blended into Boothroyd's, and the tool's Loewen-Shaw share 1 - R2 of the frictional heat (Oxley puts it all into the chip); family b: the reverse (Boothroyd's beta, all frictional heat to the chip) blended into its Loewen-Shaw partitions | scale on Boothroyd beta and a constant share s_int of the frictional heat into the chip (a scale on dT_M) |
+| heat_partition | family a: Loewen & Shaw 1954 shear-plane partition R1 blended into Boothroyd's, and the tool's Loewen-Shaw share 1 - R2 of the frictional heat (Oxley puts it all into the chip); family b: the reverse (Boothroyd's beta, all frictional heat to the chip) blended into its Loewen-Shaw partitions; family c: Weiner's shear-plane partition blended towards Boothroyd's, and the tool given its Loewen-Shaw share 1 - R2 of the frictional heat (which family c puts all into the chip), blend up to 2 (as far again beyond; beta <= 0.95, chip share >= 0) | scale on Boothroyd beta and a constant share s_int of the frictional heat into the chip (a scale on dT_M) |
 | size_effect | Kienzle 1952 power law (h / 0.1 mm)^-m_s on every flow stress | Nix-Gao sqrt(1 + l/h) |
 | built_up_edge | rake shift gated by the interface temperature of the cut (logistic below a gate temperature; Trent & Wright 2000: BUE disappears as the interface heats) | rake shift gated by a logistic in speed |
 | force_crosstalk | full 2x2 channel matrix (both cross terms and both gains) | Ft += c Fc |
@@ -86,7 +91,7 @@ null; a diagnosis error is not a claim but is shown in its own column). Naming i
 "#;
 
 /// The whole page.
-pub fn render(opts: &ConcealedOptions, sections: &[(String, String)], seconds: f64) -> String {
+pub fn render(opts: &ConcealedOptions, sections: &[(Family, String)], seconds: f64) -> String {
     let mut s = String::from(INTRO);
     let _ = writeln!(
         s,
@@ -95,18 +100,22 @@ pub fn render(opts: &ConcealedOptions, sections: &[(String, String)], seconds: f
         opts.datasets,
         opts.threads,
         seconds,
-        if opts.families.len() == 2 { "both".to_string() } else { opts.families.join(",") },
+        match opts.families.as_slice() {
+            [Family::A, Family::B] => "both".to_string(),
+            [Family::A, Family::B, Family::C] => "all".to_string(),
+            fs => fs.iter().map(|f| f.as_str()).collect::<Vec<_>>().join(","),
+        },
         opts.datasets,
         opts.seed,
         opts.out.display()
     );
     for (f, text) in sections {
-        let label = if f == "b" {
-            "never tuned on; the README may quote only this family"
-        } else {
-            "the detector may be tuned on this family"
+        let label = match f {
+            Family::A => "the detector may be tuned on this family",
+            Family::B => "never tuned on; the README may quote only this family",
+            Family::C => "never tuned on; run once after the detector change of the thirteenth session was decided",
         };
-        let _ = writeln!(s, "### Family {f} ({label})\n\n{text}");
+        let _ = writeln!(s, "### Family {} ({label})\n\n{text}", f.as_str());
     }
     s
 }

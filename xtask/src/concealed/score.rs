@@ -12,7 +12,7 @@ use super::mechanism::{DECOYS, MECHANISMS};
 /// What the detector said about one dataset (only the report keys the benchmark reads).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Outcome {
-    /// `a` or `b`.
+    /// `a`, `b` or `c`.
     pub family: String,
     /// Index within the family.
     pub index: usize,
@@ -25,7 +25,7 @@ pub struct Outcome {
     /// ENR beyond the stated nuisance (`detectable.rs`), when generated and available.
     #[serde(default)]
     pub enr_beyond_nuisance: Option<f64>,
-    /// `ok`, `generation_failed` or `diagnosis_error`.
+    /// `ok`, `generation_failed` or `diagnosis_error` (`generated` under `--generate-only`).
     pub status: String,
     /// The error, when not ok.
     pub reason: String,
