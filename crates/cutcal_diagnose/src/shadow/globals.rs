@@ -1,0 +1,124 @@
+//! The shadow's global fit (issue 10, item 1): bounded least squares of cutcal's extended Oxley
+//! model (Oxley 1989; Lalwani, Mehta & Jain 2009) against the external simulation's `ln Fc, ln Ft,
+//! ln t2`, over a flow-stress level and the JC n, C and m (weak priors), and, behind a gate, the
+//! tool-chip interface factor m_f (`ShadowSimulation::build`).
+
+use cutcal_ident::lm::{minimise, Bounds, LmOptions, Problem};
+use cutcal_ident::IdentError;
+use cutcal_model::oxley::OxleyPrediction;
+use cutcal_model::{CuttingTest, JcParams, Material};
+use nalgebra::DVector;
+use rayon::prelude::*;
+
+use super::knobs::Shadow;
+use crate::error::DiagnoseError;
+use crate::simulator::Prediction;
+
+/// Least squares of the shadow's globals `[ln level, n, C, m]` against the external numbers.
+pub(super) struct ShadowFit<'a> {
+    pub(super) material: &'a Material,
+    pub(super) nominal: JcParams,
+    pub(super) tests: &'a [CuttingTest],
+    pub(super) external: &'a [Prediction],
+    /// Warm starts per test: the solutions at the nominal set (fixed, so the fit is deterministic).
+    pub(super) starts: Vec<OxleyPrediction>,
+    /// Whether the interface factor m_f is a fifth global (else m_f = 1, Oxley's sticking).
+    pub(super) with_friction: bool,
+}
+
+impl ShadowFit<'_> {
+    pub(super) fn jc(&self, p: &[f64]) -> JcParams {
+        JcParams {
+            a_pa: self.nominal.a_pa * p[0].exp(),
+            b_pa: self.nominal.b_pa * p[0].exp(),
+            n: p[1],
+            c: p[2],
+            m: p[3],
+            ..self.nominal
+        }
+    }
+
+    pub(super) fn friction(&self, p: &[f64]) -> f64 {
+        if self.with_friction {
+            p[4]
+        } else {
+            1.0
+        }
+    }
+
+    /// RMS of `ln(y_shadow / y_external)` (%) at `p` over the fitted tests, when every one solves.
+    pub(super) fn rms_pct(&self, p: &[f64]) -> Option<f64> {
+        let mut r = DVector::zeros(self.residual_count());
+        Problem::residuals(self, &DVector::from_row_slice(p), &mut r).ok()?;
+        let k = 3 * self.tests.len();
+        let ms = r.rows(0, k).norm_squared() / k as f64;
+        ms.is_finite().then(|| 100.0 * (ms.sqrt().exp() - 1.0))
+    }
+
+    /// Bounded least squares from `start`: the parameters and whether a tolerance was met.
+    pub(super) fn run(&self, start: Vec<f64>) -> Result<(Vec<f64>, bool), DiagnoseError> {
+        let (mut names, mut lo, mut hi) = (
+            vec!["ln_level".to_string(), "n".into(), "C".into(), "m".into()],
+            vec![-2.5, 0.05, 1e-4, 0.3],
+            vec![2.5, 0.8, 0.2, 2.5],
+        );
+        if self.with_friction {
+            names.push("m_f".into());
+            lo.push(FRICTION_FACTOR_MIN);
+            hi.push(1.0);
+        }
+        let bounds = Bounds::new(names, lo, hi).map_err(|e| DiagnoseError::Fit(e.to_string()))?;
+        let opts =
+            LmOptions { max_iterations: 30, gradient_tolerance: 1e-6, cost_tolerance: 1e-6, step_tolerance: 1e-6 };
+        Ok(match minimise(self, &bounds, &DVector::from_vec(start.clone()), &opts) {
+            Ok(r) => {
+                (r.params.iter().copied().collect(), r.termination != cutcal_ident::lm::Termination::MaxIterations)
+            }
+            Err(_) => (start, false),
+        })
+    }
+}
+
+/// Lower bound of the shadow's interface factor m_f (tau_int = m_f k_chip).
+const FRICTION_FACTOR_MIN: f64 = 0.3;
+/// The shadow tries m_f only when the four globals leave more than this misfit (RMS, %).
+pub(super) const FRICTION_TRY_RMS_PCT: f64 = 3.0;
+/// m_f is kept only when it brings the misfit below this fraction of the four-global fit's: an
+/// external contact unlike Oxley's sticking (an FE run's Coulomb or shear-factor law) then explains
+/// most of it, while a modest gain means m_f only compensates for another difference.
+pub(super) const FRICTION_GATE: f64 = 0.5;
+
+impl Problem for ShadowFit<'_> {
+    fn parameter_count(&self) -> usize {
+        4 + usize::from(self.with_friction)
+    }
+    fn residual_count(&self) -> usize {
+        3 * self.tests.len() + 3
+    }
+    fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
+        let x: Vec<f64> = p.iter().copied().collect();
+        let sh = Shadow { material: self.material, jc: self.jc(&x), friction: self.friction(&x) };
+        let ys: Vec<Result<[f64; 5], DiagnoseError>> = self
+            .tests
+            .par_iter()
+            .zip(&self.starts)
+            .map(|(t, s)| sh.eval_from(t, None, Some(s)).map(|(y, _)| y))
+            .collect();
+        for (i, (y, e)) in ys.into_iter().zip(self.external).enumerate() {
+            let y = y.map_err(|e| match e {
+                DiagnoseError::Model { source, .. } => IdentError::Model(source),
+                other => IdentError::InvalidOptions(other.to_string()),
+            })?;
+            out[3 * i] = e.fc_n_per_m.ln() - y[0];
+            out[3 * i + 1] = e.ft_n_per_m.ln() - y[1];
+            out[3 * i + 2] = e.chip_m.ln() - y[2];
+        }
+        // Weak priors (pseudo-residuals in the same log units, one per 0.05 of noise): n +-0.1,
+        // C +-0.01, m +-0.2 about the nominal set.
+        let k = 3 * self.tests.len();
+        out[k] = 0.05 * (x[1] - self.nominal.n) / 0.1;
+        out[k + 1] = 0.05 * (x[2] - self.nominal.c) / 0.01;
+        out[k + 2] = 0.05 * (x[3] - self.nominal.m) / 0.2;
+        Ok(())
+    }
+}
