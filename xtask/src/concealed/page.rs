@@ -15,10 +15,10 @@ user would run `cutcal diagnose --recordings recordings.csv --simulation simulat
 material file); only `verdict`, `selected`, `ambiguous_with`, `fit.before/after.loco.all` and
 `shadow_rms_pct` (for the table of naming by the shadow's fit) are read.
 
-**Family `a` is the family the detector may be tuned on; family `b` is never tuned on, and only its
-figures may be quoted in the README. Family `c` is never tuned on either: its data are generated
-(`--generate-only`: data, sealed truth and a generation summary, no diagnosis) but the detector is
-run on it once only, after the detector change of the thirteenth session was decided.**
+**Family `a` is the family the detector may be tuned on; families `b` and `c` are never tuned on,
+and only their figures may be quoted in the README. Family `c` was generated first without the
+detector (`--generate-only`: data, sealed truth and a generation summary, no diagnosis), and the
+detector was run on it only after the detector change of the thirteenth session was decided.**
 
 ## Generator forward models
 
@@ -112,8 +112,8 @@ pub fn render(opts: &ConcealedOptions, sections: &[(Family, String)], seconds: f
     for (f, text) in sections {
         let label = match f {
             Family::A => "the detector may be tuned on this family",
-            Family::B => "never tuned on; the README may quote only this family",
-            Family::C => "never tuned on; run once after the detector change of the thirteenth session was decided",
+            Family::B => "never tuned on; the README may quote it",
+            Family::C => "never tuned on; first run after the detector change of the thirteenth session was decided",
         };
         let _ = writeln!(s, "### Family {} ({label})\n\n{text}", f.as_str());
     }
