@@ -185,22 +185,10 @@ fn interface(c: &Cond, k: &Consts, mods: &Mods, p: &Primary, phi: f64) -> Result
             };
             tau / sn - lam.tan()
         };
-        let (mut lo, mut hi) = (1e-9, lam_hi);
-        if !(gap(lo) > 0.0 && gap(hi) < 0.0) {
+        if !(gap(1e-9) > 0.0 && gap(lam_hi) < 0.0) {
             return Err("no friction angle solves tan(lambda) = tau / sigma_N".into());
         }
-        for _ in 0..80 {
-            let m = 0.5 * (lo + hi);
-            if gap(m) > 0.0 {
-                lo = m;
-            } else {
-                hi = m;
-            }
-            if hi - lo < 1e-14 {
-                break;
-            }
-        }
-        let lambda = 0.5 * (lo + hi);
+        let lambda = bisect(1e-9, lam_hi, 80, 1e-14, |m| Ok(gap(m) > 0.0))?;
         let f = p.fs * lambda.sin() / (phi + lambda - p.a).cos();
         let q = f * p.vc / p.l_c;
         let share = if mods.partition_blend > 0.0 {
@@ -211,23 +199,35 @@ fn interface(c: &Cond, k: &Consts, mods: &Mods, p: &Primary, phi: f64) -> Result
         };
         Ok((lambda, t_chip + k.psi * share * jaeger_max_rise(q, p.l_c, p.vc, kc, kappa) - t_int))
     };
-    let (mut lo, mut hi) = (t_chip, k.jc.tm + 1000.0);
+    let (lo, hi) = (t_chip, k.jc.tm + 1000.0);
     if !(at(lo)?.1 >= 0.0 && at(hi)?.1 < 0.0) {
         return Err("no interface temperature in the bracket".into());
     }
-    for _ in 0..60 {
+    let t_int = bisect(lo, hi, 60, 1e-8, |m| Ok(at(m)?.1 >= 0.0))?;
+    Ok((at(t_int)?.0, t_int))
+}
+
+/// Bisection on [lo, hi], at most `steps` halvings or until the bracket is below `tol`:
+/// `up(m)` says whether the root lies above m. Returns the bracket's midpoint.
+fn bisect(
+    mut lo: f64,
+    mut hi: f64,
+    steps: usize,
+    tol: f64,
+    mut up: impl FnMut(f64) -> Result<bool, String>,
+) -> Result<f64, String> {
+    for _ in 0..steps {
         let m = 0.5 * (lo + hi);
-        if at(m)?.1 >= 0.0 {
+        if up(m)? {
             lo = m;
         } else {
             hi = m;
         }
-        if hi - lo < 1e-8 {
+        if hi - lo < tol {
             break;
         }
     }
-    let t_int = 0.5 * (lo + hi);
-    Ok((at(t_int)?.0, t_int))
+    Ok(0.5 * (lo + hi))
 }
 
 /// phi minimising Fc at friction angle `lambda` over the search range: a 13-point scan, then a
