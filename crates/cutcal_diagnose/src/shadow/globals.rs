@@ -14,7 +14,8 @@ use super::knobs::Shadow;
 use crate::error::DiagnoseError;
 use crate::simulator::Prediction;
 
-/// Least squares of the shadow's globals `[ln level, n, C, m]` against the external numbers.
+/// Least squares of the shadow's globals `[ln level, n, C, m]`, and m_f when `with_friction`, against the
+/// external numbers.
 pub(super) struct ShadowFit<'a> {
     pub(super) material: &'a Material,
     pub(super) nominal: JcParams,
