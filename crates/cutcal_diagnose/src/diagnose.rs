@@ -462,5 +462,6 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         calibration: calibration_text,
         simulator_notes,
         shadow_rms_pct: None,
+        shadow_friction_factor: None,
     })
 }

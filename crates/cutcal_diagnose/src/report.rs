@@ -242,6 +242,11 @@ pub struct Report {
     /// solves; absent in Mode B and when no shadow was built.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shadow_rms_pct: Option<f64>,
+    /// Mode A: the fitted shadow's tool-chip interface factor m_f (tau_int = m_f k_chip; 1 =
+    /// Oxley's sticking, kept unless a lower m_f halves the misfit); absent in Mode B and when no
+    /// shadow was built.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shadow_friction_factor: Option<f64>,
 }
 
 impl Report {

@@ -235,6 +235,10 @@ mod tests {
         assert!(r.residuals.iter().all(|x| x.test != "1"), "test 1 is still in the residuals");
         assert!(r.residuals.iter().any(|x| x.test == "2"));
         assert_eq!(r.observations, 15 * 3, "16 tests with Fc, Ft and tc, less test 1");
+        // An Oxley simulation (the benchmark's family a) is reproduced by the four globals, so the
+        // shadow keeps Oxley's sticking contact, and the JSON says both.
+        assert!(r.shadow_rms_pct.is_some_and(|x| x < 3.0), "{:?}", r.shadow_rms_pct);
+        assert_eq!(r.shadow_friction_factor, Some(1.0));
     }
 
     #[test]

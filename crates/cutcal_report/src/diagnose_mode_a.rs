@@ -134,6 +134,7 @@ pub(crate) fn mode_a(
             }
             let mut report = diagnose(&sim, &kept, &cfg)?;
             report.shadow_rms_pct = Some(sm.rms_pct);
+            report.shadow_friction_factor = Some(sm.friction_factor);
             Ok(report)
         }
         Err(e) => {
