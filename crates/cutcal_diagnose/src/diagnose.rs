@@ -307,6 +307,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             }
         });
         if let Some((b, a, da)) = &artefact {
+            cands[*b].stopped_by = Some(a.artefact);
             cands[*b].reason = format!(
                 "{} explains the mismatch at least as well (its dAICc {:+.1} against {:+.1}; fitted factor {:.3}): no claim",
                 a.artefact.describe(),

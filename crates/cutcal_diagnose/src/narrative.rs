@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use cutcal_model::CuttingTest;
 
 use crate::fit::{self, output, Fit, Obs, Spec};
+use crate::instrument::Artefact;
 use crate::mechanism::{info, MechanismId};
 use crate::problem::{rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
@@ -74,15 +75,17 @@ pub(crate) fn next_test(
 ) -> String {
     let find = |m: MechanismId| cands.iter().find(|c| c.id == m);
     match verdict {
-        Verdict::None => "none needed: no significant mismatch; add conditions only to widen the validated range".into(),
-        Verdict::Unexplained => format!(
-            "the mismatch fits no library mechanism: measure the edge radius, the flank wear and the interface temperature, and add feeds and speeds outside the present range ({} conditions now)",
-            pr.groups.len()
-        ),
+        Verdict::None => {
+            "none needed: no significant mismatch; add conditions only to widen the validated range".into()
+        }
+        Verdict::Unexplained => unexplained_next_test(pr, cands, base, base_spec),
         Verdict::MissingPhysics => {
             let m = accepted[0];
             match t_optimal(pr, (&base_spec.clone(), &base.x), (current_spec, &current.x)) {
-                Some(s) => format!("confirm {} with a test at {s} where the corrected and uncorrected models differ most", m.as_str()),
+                Some(s) => format!(
+                    "confirm {} with a test at {s} where the corrected and uncorrected models differ most",
+                    m.as_str()
+                ),
                 None => format!("confirm {}: {}", m.as_str(), info(m).separate_by),
             }
         }
@@ -101,6 +104,51 @@ pub(crate) fn next_test(
             parts.join("; ")
         }
     }
+}
+
+/// The next test when nothing was claimed although the misfit is structured. A significant
+/// candidate stopped by an instrument artefact asks first for the dead-weight check of the force
+/// channels (ISO 21612: an instrument error is cheaper to rule out than new cuts); one that failed
+/// only the held-out check asks for the condition where it and the baseline differ most
+/// (T-optimal); otherwise the misfit fits no library mechanism.
+fn unexplained_next_test(pr: &Problem<'_>, cands: &[Candidate], base: &Fit, base_spec: &Spec) -> String {
+    let mut fitting: Vec<&Candidate> = cands.iter().filter(|c| c.significant && c.ci_ok && !c.accepted).collect();
+    fitting.sort_by(|a, b| a.daicc.total_cmp(&b.daicc));
+    let conditions = pr.groups.len();
+    if let Some((c, a)) = fitting.iter().find_map(|c| c.stopped_by.map(|a| (c, a))) {
+        let drift = if a == Artefact::Drift { " and repeat the first test at the end of the series" } else { "" };
+        if c.id == MechanismId::ForceCrosstalk {
+            return format!(
+                "check the force channels with dead weights in each direction (ISO 21612){drift}: {} and a \
+                 cross-talk from the cutting-force channel into the feed channel explain the mismatch about equally, \
+                 and the same check tells them apart",
+                a.describe()
+            );
+        }
+        return format!(
+            "check the force channels with dead weights in each direction (ISO 21612){drift}: {} explains the \
+             mismatch as well as {} does; if the channels hold their calibration, {} is the candidate ({})",
+            a.describe(),
+            c.id.as_str(),
+            c.id.as_str(),
+            info(c.id).separate_by
+        );
+    }
+    if let Some(c) = fitting.first() {
+        let at = t_optimal(pr, (base_spec, &base.x), (&c.spec, &c.fit.x))
+            .map_or_else(|| " beyond the present feeds and speeds".to_string(), |s| format!(", the first at {s}"));
+        return format!(
+            "{} fits these data (p = {:.2e}) but fails the held-out check (leave one condition out) \
+             with {conditions} conditions: add conditions{at}; then {}",
+            c.id.as_str(),
+            c.p,
+            info(c.id).separate_by
+        );
+    }
+    format!(
+        "the mismatch fits no library mechanism: measure the edge radius, the flank wear and the interface \
+         temperature, and add feeds and speeds outside the present range ({conditions} conditions now)"
+    )
 }
 
 /// The condition of a small grid around the design where two fitted models differ most

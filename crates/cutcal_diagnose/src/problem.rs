@@ -33,6 +33,8 @@ pub(crate) struct Candidate {
     pub(crate) significant: bool,
     pub(crate) accepted: bool,
     pub(crate) reason: String,
+    /// The instrument artefact that explains the mismatch at least as well and stopped the claim.
+    pub(crate) stopped_by: Option<crate::instrument::Artefact>,
 }
 
 /// Held-out residuals of a leave-one-condition-out pass, in observation order (noise units).

@@ -323,6 +323,7 @@ pub(crate) fn screen_and_refit(
             significant: false,
             accepted: false,
             reason: String::new(),
+            stopped_by: None,
         });
     }
     Ok((out, lost))

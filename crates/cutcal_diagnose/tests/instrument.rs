@@ -24,6 +24,10 @@ fn a_force_drift_over_the_run_order_is_not_named_flank_wear() {
     let wear = report.mechanisms.iter().find(|m| m.id == "flank_wear").expect("flank wear is refitted");
     assert!(wear.p_value.is_some_and(|p| p < report.thresholds.per_mechanism_alpha), "{}", report.to_text());
     assert!(wear.reason.contains("drift of both force channels"), "{}", report.to_text());
+    // The next test rules the instrument out first, then names the candidate it stopped.
+    assert!(report.next_test.starts_with("check the force channels with dead weights"), "{}", report.next_test);
+    assert!(report.next_test.contains("repeat the first test at the end of the series"), "{}", report.next_test);
+    assert!(report.next_test.contains("flank_wear is the candidate"), "{}", report.next_test);
 }
 
 #[test]

@@ -242,6 +242,28 @@ mod tests {
     }
 
     #[test]
+    fn a_candidate_that_fails_only_the_held_out_check_asks_for_more_conditions() {
+        // Five conditions (a benchmark pair with a hidden heat partition): the misfit is real and
+        // mechanisms fit it significantly, but with one condition held out none predicts it better,
+        // so nothing is claimed, and the next test asks for conditions, naming the best fit.
+        let r = diagnose_files(&args(
+            "fixtures/diagnose/five_conditions_recordings.csv",
+            Some("fixtures/diagnose/five_conditions_simulation.csv"),
+            None,
+            None,
+        ))
+        .unwrap();
+        assert_eq!(r.verdict, cutcal_diagnose::Verdict::Unexplained, "{}", r.to_text());
+        let best = r.mechanisms.iter().find(|m| m.reason == "does not improve held-out prediction").unwrap();
+        assert!(
+            r.next_test.starts_with(&format!("{} fits these data", best.id))
+                && r.next_test.contains("fails the held-out check (leave one condition out) with 5 conditions"),
+            "{}",
+            r.next_test
+        );
+    }
+
+    #[test]
     fn table6_single_condition_is_ambiguous_with_ft_deficit_and_tc_excess() {
         // Paper Table 6, C38 test 3: FE (enhanced JC) 244, 126.5 N/mm, 0.211 mm vs measured 224, 186,
         // 0.157. (measured - model)/model: Fc 224/244 - 1 = -8.2 %, Ft 186/126.5 - 1 = +47.0 %,
