@@ -8,6 +8,7 @@ mod card_law;
 mod catalogue;
 mod determinism;
 mod identify;
+mod pipe;
 mod predict;
 mod recordings;
 

@@ -8,6 +8,7 @@
 #![allow(clippy::print_stdout)]
 
 pub mod commands;
+pub mod output;
 pub mod progress;
 
 use anyhow::Result;

@@ -61,9 +61,9 @@ pub fn run(args: &DiagnoseArgs) -> Result<()> {
         write_atomic(p, residual_plot(&report).as_bytes()).with_context(|| format!("writing {}", p.display()))?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        crate::output::emit_line(&serde_json::to_string_pretty(&report)?)?;
     } else {
-        print!("{}", report.to_text());
+        crate::output::emit(&report.to_text())?;
     }
     Ok(())
 }

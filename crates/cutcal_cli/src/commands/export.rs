@@ -90,7 +90,7 @@ impl ExportArgs {
 /// Runs `cutcal export`.
 pub fn run(args: &ExportArgs) -> Result<()> {
     for p in export_files(&args.material, &args.jc, &args.out, &args.request())? {
-        println!("wrote {}", p.display());
+        crate::output::emit_line(&format!("wrote {}", p.display()))?;
     }
     Ok(())
 }

@@ -173,9 +173,9 @@ fn run_joint(args: &IdentifyArgs) -> Result<()> {
     };
     let (mf, id) = joint_files(&args.material, &args.tests, &req)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&id)?);
+        crate::output::emit_line(&serde_json::to_string_pretty(&id)?)?;
     } else {
-        print!("{}", cutcal_report::joint::table(&mf.material.name, &id));
+        crate::output::emit(&cutcal_report::joint::table(&mf.material.name, &id))?;
     }
     Ok(())
 }
@@ -199,9 +199,9 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
         write_atomic(p, run.jc_toml()?.as_bytes())?;
     }
     if args.json {
-        println!("{}", run.json()?);
+        crate::output::emit_line(&run.json()?)?;
     } else {
-        print!("{}", run.text());
+        crate::output::emit(&run.text())?;
     }
     Ok(())
 }

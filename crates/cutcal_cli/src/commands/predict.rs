@@ -68,9 +68,9 @@ impl PredictArgs {
 pub fn run(args: &PredictArgs) -> Result<()> {
     let report = predict_files(&args.material, &args.jc, &args.tests, &args.request())?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        crate::output::emit_line(&serde_json::to_string_pretty(&report)?)?;
     } else {
-        print!("{}", table(&report));
+        crate::output::emit(&table(&report))?;
     }
     Ok(())
 }

@@ -50,9 +50,9 @@ pub fn run(a: &RecordingsArgs) -> Result<()> {
     progress.finish();
     let r = r?;
     if a.json {
-        println!("{}", r.json);
+        crate::output::emit_line(&r.json)?;
     } else {
-        print!("{}", table(&r));
+        crate::output::emit(&table(&r))?;
     }
     Ok(())
 }

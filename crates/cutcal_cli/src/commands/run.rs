@@ -33,7 +33,7 @@ pub fn run(args: &RunArgs) -> Result<()> {
     progress.finish();
     let report = report?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        crate::output::emit_line(&serde_json::to_string_pretty(&report)?)?;
     }
     Ok(())
 }
