@@ -136,6 +136,29 @@ pub(crate) fn line_of(text: &str, offset: usize) -> usize {
     text.as_bytes()[..offset.min(text.len())].iter().filter(|b| **b == b'\n').count() + 1
 }
 
+/// 1-based line where a CSV record starts. The csv crate takes a record's position before it
+/// consumes the `\n` of a CRLF line end, so with CRLF files (spreadsheet exports) its
+/// `Position::line` is one short; the byte offset moved past line ends, blank lines and `#`
+/// comments is exact for either line end.
+pub(crate) fn record_line(text: &str, pos: &csv::Position) -> usize {
+    let b = text.as_bytes();
+    let mut o = usize::try_from(pos.byte()).unwrap_or(usize::MAX).min(b.len());
+    loop {
+        while o < b.len() && (b[o] == b'\r' || b[o] == b'\n') {
+            o += 1;
+        }
+        let at_line_start = o == 0 || b[o - 1] == b'\n';
+        if at_line_start && o < b.len() && b[o] == b'#' {
+            while o < b.len() && b[o] != b'\n' {
+                o += 1;
+            }
+        } else {
+            break;
+        }
+    }
+    line_of(text, o)
+}
+
 /// Finds the line where `key` is assigned in a TOML text (best effort, for located validation errors).
 ///
 /// `key` may be a dotted path (`thermal.valid_to_c`, `bounds.n`, `yield_strength.coefficients`):

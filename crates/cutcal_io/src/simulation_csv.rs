@@ -41,7 +41,7 @@ pub fn parse_simulation(path: &Path, text: &str) -> Result<Vec<SimulatedTest>, I
     let mut rdr =
         csv::ReaderBuilder::new().comment(Some(b'#')).trim(csv::Trim::All).flexible(false).from_reader(text.as_bytes());
     let csv_err = |e: csv::Error| {
-        let line = e.position().map(|p| p.line() as usize);
+        let line = e.position().map(|p| crate::record_line(text, p));
         InputError::new(path, line, "(csv)", "", e.to_string())
     };
     let headers = rdr.headers().map_err(csv_err)?.clone();
@@ -68,7 +68,7 @@ pub fn parse_simulation(path: &Path, text: &str) -> Result<Vec<SimulatedTest>, I
     let mut seen = HashSet::new();
     for rec in rdr.records() {
         let rec = rec.map_err(csv_err)?;
-        let line = rec.position().map(|p| p.line() as usize);
+        let line = rec.position().map(|p| crate::record_line(text, p));
         let cell = |name: &str| col(name).and_then(|i| rec.get(i)).unwrap_or("");
         let num = |name: &str, lo: f64, hi: f64, rule: &str| -> Result<Option<f64>, InputError> {
             let s = cell(name);
@@ -138,5 +138,15 @@ mod tests {
         assert_eq!((e.line, e.field.as_str()), (Some(3), "test"));
         let e = parse("test,fc_n_per_mm,ft_n_per_mm,chip_mm\n3,,1,0.2\n").unwrap_err();
         assert_eq!(e.field, "fc_n_per_mm");
+    }
+
+    #[test]
+    fn crlf_files_report_the_same_lines() {
+        // A spreadsheet export ends its lines with CRLF: the bad row is on line 4 either way.
+        for end in ["\n", "\r\n"] {
+            let text = ["test,fc_n_per_mm,ft_n_per_mm,chip_mm", "1,244,1,0.2", "# note", "3,244,-1,0.2", ""].join(end);
+            let e = parse(&text).unwrap_err();
+            assert_eq!((e.line, e.field.as_str()), (Some(4), "ft_n_per_mm"), "{end:?}");
+        }
     }
 }

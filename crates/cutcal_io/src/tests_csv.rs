@@ -83,7 +83,7 @@ pub fn parse_tests_with_columns(path: &Path, text: &str) -> Result<(Vec<CuttingT
     let mut rdr =
         csv::ReaderBuilder::new().comment(Some(b'#')).trim(csv::Trim::All).flexible(false).from_reader(text.as_bytes());
     let csv_err = |e: csv::Error| {
-        let line = e.position().map(|p| p.line() as usize);
+        let line = e.position().map(|p| crate::record_line(text, p));
         match e.kind() {
             csv::ErrorKind::UnequalLengths { expected_len, len, .. } => InputError::new(
                 path,
@@ -153,7 +153,7 @@ pub fn parse_tests_with_columns(path: &Path, text: &str) -> Result<(Vec<CuttingT
     let mut seen = HashSet::new();
     for rec in rdr.records() {
         let rec = rec.map_err(csv_err)?;
-        let line = rec.position().map(|p| p.line() as usize);
+        let line = rec.position().map(|p| crate::record_line(text, p));
         let cell = |name: &str| col(name).and_then(|i| rec.get(i)).unwrap_or("");
         let num = |name: &str, required: bool| -> Result<Option<f64>, InputError> {
             let s = cell(name);
@@ -321,6 +321,21 @@ mod tests {
         assert_eq!((e.line, e.field.as_str()), (Some(3), "test"));
         let e = parse("test,speed_m_min,uncut_mm,width_mm,rake_deg\n1,NaN,0.15,1,0\n").unwrap_err();
         assert_eq!(e.field, "speed_m_min");
+    }
+
+    #[test]
+    fn crlf_files_report_the_same_lines() {
+        // A spreadsheet export ends its lines with CRLF (csv's own record line is one short there):
+        // the bad cell is on line 5 and the short row on line 3 either way.
+        for end in ["\n", "\r\n"] {
+            let head = "test,speed_m_min,uncut_mm,width_mm,rake_deg,fc_n_per_mm";
+            let text = [head, "1,200,0.15,1.6,0,100", "", "# repeat", "2,200,0.15,1.6,0,-5", ""].join(end);
+            let e = parse(&text).unwrap_err();
+            assert_eq!((e.line, e.field.as_str(), e.value.as_str()), (Some(5), "fc_n_per_mm", "-5"), "{end:?}");
+            let text = [head, "1,200,0.15,1.6,0,100", "2,200,0.15", ""].join(end);
+            let e = parse(&text).unwrap_err();
+            assert_eq!((e.line, e.field.as_str()), (Some(3), "(row)"), "{end:?}");
+        }
     }
 
     #[test]
