@@ -5,7 +5,8 @@
 //! literature (family `a`: Oxley 1989 as in Lalwani et al. 2009, `oxley.rs`; family `b`: Merchant
 //! closure + Zorev contact + Loewen-Shaw temperatures, `merchant.rs`; family `c`: minimum-energy
 //! shear angle + Coulomb-Tresca contact + Weiner / Jaeger temperatures, `energy.rs`), the hidden mechanisms in
-//! published forms other than the detector's (`mechanism.rs`), datasets as a user has them
+//! published forms other than the detector's (`mechanism.rs`; family `d`: a's closure with every
+//! mechanism in a third form, `forms_d.rs`), datasets as a user has them
 //! (`dataset.rs`). Each dataset is diagnosed in Mode A exactly as `cutcal diagnose --recordings
 //! recordings.csv --simulation simulation.csv --json` would (the CLI's own argument parser and
 //! `diagnose_files`), and only `verdict`, `selected`, `ambiguous_with` and `fit.{before,after}.loco.all`
@@ -18,6 +19,7 @@
 mod dataset;
 mod detectable;
 mod energy;
+mod forms_d;
 mod material;
 mod mechanism;
 mod merchant;
@@ -60,8 +62,10 @@ pub struct ConcealedOptions {
 }
 
 /// A generator family: `a` (Oxley; the detector may be tuned on it), `b` (Merchant closure, Zorev
-/// contact, Loewen-Shaw temperatures; never tuned on) or `c` (Merchant's minimum-energy shear angle,
-/// Coulomb-Tresca contact, Weiner / Jaeger temperatures, `energy.rs`; never tuned on).
+/// contact, Loewen-Shaw temperatures; never tuned on), `c` (Merchant's minimum-energy shear angle,
+/// Coulomb-Tresca contact, Weiner / Jaeger temperatures, `energy.rs`; never tuned on) or `d`
+/// (family a's Oxley closure with every mechanism in a third form, `forms_d.rs`; never tuned on,
+/// generated blind).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Family {
     /// Oxley 1989 (`oxley.rs`).
@@ -70,37 +74,47 @@ pub enum Family {
     B,
     /// Minimum energy + Coulomb-Tresca + Weiner / Jaeger (`energy.rs`).
     C,
+    /// Oxley 1989 (`oxley.rs`) with the mechanisms of `forms_d.rs`.
+    D,
 }
 
 impl Family {
-    /// `a`, `b` or `c`.
+    /// `a`, `b`, `c` or `d`.
     pub const fn as_str(self) -> &'static str {
         match self {
             Self::A => "a",
             Self::B => "b",
             Self::C => "c",
+            Self::D => "d",
         }
     }
 
-    /// The families of a `--family` value: `a`, `b`, `c`, `both` (= a and b) or `all` (= a, b, c).
+    /// The families of a `--family` value: `a`, `b`, `c`, `d`, `both` (= a and b), `all` (= a, b,
+    /// c; not d) or a comma list of single families such as `a,b,c,d` (no repeats).
     pub fn parse_list(s: &str) -> Result<Vec<Self>, String> {
+        let one = |x: &str| [Self::A, Self::B, Self::C, Self::D].into_iter().find(|f| f.as_str() == x.trim());
+        let err = || {
+            format!("--family must be a, b, c, d, both (a and b), all (a, b, c) or a comma list such as a,b,c,d (got `{s}`)")
+        };
         Ok(match s {
-            "a" => vec![Self::A],
-            "b" => vec![Self::B],
-            "c" => vec![Self::C],
             "both" | "ab" => vec![Self::A, Self::B],
             "all" | "abc" => vec![Self::A, Self::B, Self::C],
-            other => return Err(format!("--family must be a, b, c, both (a and b) or all (got `{other}`)")),
+            list => {
+                let fams: Vec<Self> = list.split(',').map(one).collect::<Option<_>>().ok_or_else(err)?;
+                let repeated = fams.iter().enumerate().any(|(i, f)| fams[..i].contains(f));
+                (!repeated).then_some(fams).ok_or_else(err)?
+            }
         })
     }
 
     /// Offset of the family's random stream in a dataset's seed: a and b keep the streams they had
-    /// before family c existed (0 and 2^32); c has its own (2^33).
+    /// before family c existed (0 and 2^32); c has its own (2^33), d its own (3 * 2^32).
     pub const fn stream(self) -> u64 {
         match self {
             Self::A => 0,
             Self::B => 1 << 32,
             Self::C => 2 << 32,
+            Self::D => 3 << 32,
         }
     }
 }
@@ -350,9 +364,15 @@ mod tests {
         assert_eq!(Family::parse_list("both").unwrap(), [Family::A, Family::B]);
         assert_eq!(Family::parse_list("all").unwrap(), [Family::A, Family::B, Family::C]);
         assert_eq!(Family::parse_list("c").unwrap(), [Family::C]);
-        assert!(Family::parse_list("d").is_err());
-        // a and b keep the seed streams they had before family c (0 and 2^32).
-        assert_eq!([Family::A.stream(), Family::B.stream(), Family::C.stream()], [0, 1 << 32, 1 << 33]);
+        assert_eq!(Family::parse_list("d").unwrap(), [Family::D]);
+        assert_eq!(Family::parse_list("a,b,c,d").unwrap(), [Family::A, Family::B, Family::C, Family::D]);
+        assert_eq!(Family::parse_list("d,a").unwrap(), [Family::D, Family::A]);
+        for bad in ["e", "", "a,,b", "a,a", "abcd", "all,d"] {
+            assert!(Family::parse_list(bad).is_err(), "{bad}");
+        }
+        // a and b keep the seed streams they had before family c (0 and 2^32); d has its own.
+        let streams = [Family::A, Family::B, Family::C, Family::D].map(Family::stream);
+        assert_eq!(streams, [0, 1 << 32, 1 << 33, 3 << 32]);
     }
 
     #[test]

@@ -33,8 +33,8 @@ pub struct SignalsFlags {
 /// Options of `cargo xtask concealed`.
 #[derive(Debug, clap::Args)]
 pub struct ConcealedFlags {
-    /// Generator family: `a` (the detector may be tuned on it), `b` or `c` (never tuned on), `both`
-    /// (a and b) or `all` (a, b and c).
+    /// Generator family: `a` (the detector may be tuned on it), `b`, `c` or `d` (never tuned on),
+    /// `both` (a and b), `all` (a, b and c) or a comma list such as `a,b,c,d`.
     #[arg(long, default_value = "both")]
     pub family: String,
     /// Number of datasets per family.

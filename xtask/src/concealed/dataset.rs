@@ -18,6 +18,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 
+use super::forms_d::{self, ShapeD};
 use super::material::{Cond, Consts, Material, Solution, MATERIALS};
 use super::mechanism::{self, Mods, Shape};
 use super::{detectable, energy, merchant, oxley, Family};
@@ -29,12 +30,12 @@ pub fn std_normal(rng: &mut ChaCha8Rng) -> f64 {
     (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
 }
 
-/// Solves one condition with family `a` (Oxley, on the shear-angle branch of `phi_hint` when given:
-/// [`oxley::solve_near`]), `b` (Merchant + Zorev + Loewen-Shaw, its own solver) or `c` (minimum
+/// Solves one condition with family `a` or `d` (Oxley, on the shear-angle branch of `phi_hint` when
+/// given: [`oxley::solve_near`]), `b` (Merchant + Zorev + Loewen-Shaw, its own solver) or `c` (minimum
 /// energy + Coulomb-Tresca + Weiner / Jaeger, [`energy::solve`]); b and c do not use the hint.
 pub fn solve(family: Family, c: &Cond, k: &Consts, m: &Mods, phi_hint: Option<f64>) -> Result<Solution, String> {
     match family {
-        Family::A => oxley::solve_near(c, k, m, phi_hint),
+        Family::A | Family::D => oxley::solve_near(c, k, m, phi_hint),
         Family::B => merchant::solve(c, k, m),
         Family::C => energy::solve(c, k, m),
     }
@@ -45,7 +46,7 @@ pub fn solve(family: Family, c: &Cond, k: &Consts, m: &Mods, phi_hint: Option<f6
 pub struct Truth {
     /// Dataset index within its family.
     pub index: usize,
-    /// `a`, `b` or `c`.
+    /// `a`, `b`, `c` or `d`.
     pub family: String,
     /// `null`, a mechanism id or a decoy.
     pub hidden: String,
@@ -76,6 +77,9 @@ pub struct Truth {
     pub enr_beyond_nuisance: Option<f64>,
     /// The mechanism's shape parameters.
     pub shape: Shape,
+    /// Family d's shape parameters (its forms, `forms_d.rs`); absent in families a, b, c.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shape_d: Option<ShapeD>,
 }
 
 /// A generated dataset.
@@ -211,6 +215,7 @@ pub fn generate(
     let nominal = Consts::nominal(mat);
     let truth_k = nominal.perturbed(&mut rng);
     let shape = Shape::draw(&mut rng);
+    let shape_d = (family == Family::D).then(|| ShapeD::draw(&mut rng));
     let noise =
         [rng.gen_range(0.02..0.05), rng.gen_range(0.02..0.05), rng.gen_range(0.02..0.05), rng.gen_range(0.03..0.05)];
     let col_order = rng.gen_bool(0.6);
@@ -248,7 +253,15 @@ pub fn generate(
     let mut by_run: Vec<usize> = (0..n).collect();
     by_run.sort_by_key(|&i| d.run_order[i]);
     let speeds_run: Vec<f64> = by_run.iter().map(|&i| d.conds[i].v).collect();
-    let prof_run = mechanism::wear_profile(&speeds_run, shape.taylor_n);
+    let prof_run = match &shape_d {
+        // Family d: Usui's wear rate, from each row's k_AB and T_AB without the mechanism.
+        Some(sd) => {
+            let col = |f: fn(&Solution) -> f64| by_run.iter().map(|&i| f(&base[i])).collect::<Vec<f64>>();
+            forms_d::usui_profile(&speeds_run, &col(|b| b.k_ab), &col(|b| b.t_ab), sd.land[3])
+        }
+        None => mechanism::wear_profile(&speeds_run, shape.taylor_n),
+    };
+    let v_span = d.conds.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), c| (lo.min(c.v), hi.max(c.v)));
     let mut wear = vec![0.0; n];
     for (p, &i) in by_run.iter().enumerate() {
         wear[i] = prof_run[p];
@@ -260,6 +273,11 @@ pub fn generate(
     let with_at = |s: f64| -> Result<Vec<[f64; 4]>, String> {
         let mut out = Vec::with_capacity(n);
         for (i, c) in d.conds.iter().enumerate() {
+            if let Some(sd) = &shape_d {
+                let bg = |sol: &Solution| edge(sol, c, r0);
+                out.push(forms_d::truth_row(hidden, s, sd, c, &truth_k, &base[i], wear[i], v_span, &bg)?);
+                continue;
+            }
             let sol = if in_model.contains(&hidden) {
                 let m = mechanism::mods(family, hidden, s, &shape, c, &base[i], t_gate);
                 solve(family, c, &truth_k, &m, Some(base[i].phi))?
@@ -323,32 +341,8 @@ pub fn generate(
         with = y;
     }
     // Decoys on the noise-free truth.
-    match hidden {
-        "decoy:gain" => {
-            let g = 1.0 + if rng.gen_bool(0.5) { 1.0 } else { -1.0 } * rng.gen_range(0.05..0.15);
-            strength = Some(g);
-            for y in &mut with {
-                y[0] *= g;
-                y[1] *= g;
-            }
-        }
-        "decoy:outlier" => {
-            let f = 1.0 + if rng.gen_bool(0.5) { 1.0 } else { -0.6 } * rng.gen_range(0.15..0.35);
-            let i = rng.gen_range(0..n);
-            strength = Some(f);
-            with[i][0] *= f;
-            with[i][1] *= f;
-        }
-        "decoy:drift" => {
-            let dr = if rng.gen_bool(0.5) { 1.0 } else { -1.0 } * rng.gen_range(0.05..0.15);
-            strength = Some(dr);
-            for (i, y) in with.iter_mut().enumerate() {
-                let g = 1.0 + dr * d.run_order[i] as f64 / (n - 1).max(1) as f64;
-                y[0] *= g;
-                y[1] *= g;
-            }
-        }
-        _ => {}
+    if let Some(g) = mechanism::decoy(hidden, &mut rng, &mut with, &d.run_order) {
+        strength = Some(g);
     }
     let (e, e_shape) = enr(&with, &without, &noise, outs);
     let recorded = |s: &Solution, c: &Cond| edge(s, c, r0);
@@ -431,6 +425,7 @@ pub fn generate(
         columns,
         nuisance: truth_k,
         shape,
+        shape_d,
     };
     Ok(Dataset { recordings, simulation, truth, clean: [with, without, sim] })
 }

@@ -16,6 +16,7 @@
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
+use super::forms_d::{self, HybridFriction, TanhSoftening};
 use super::material::{Cond, Solution};
 use super::Family;
 
@@ -76,8 +77,16 @@ pub struct Mods {
     pub friction: Option<Zorev>,
     /// Family a: how much of the Zorev reduction applies (0 = Oxley's full sticking).
     pub friction_blend: f64,
-    /// Rake shift, rad (built-up edge).
+    /// Rake shift, rad (built-up edge; family d: also the edge's effective rake).
     pub rake_shift: f64,
+    /// Family d: multiplier on the primary zone's flow stress k_AB only (size effect).
+    pub primary_mult: f64,
+    /// Family d: TANH strain-temperature softening on every flow stress.
+    pub tanh_softening: Option<TanhSoftening>,
+    /// Family d: hybrid Coulomb-Tresca interface with speed-dependent mu.
+    pub hybrid_friction: Option<HybridFriction>,
+    /// Family d: blend towards Weiner's shear-plane partition and the Péclet-dependent tool share.
+    pub partition_d: f64,
 }
 
 impl Mods {
@@ -90,6 +99,10 @@ impl Mods {
             friction: None,
             friction_blend: 0.0,
             rake_shift: 0.0,
+            primary_mult: 1.0,
+            tanh_softening: None,
+            hybrid_friction: None,
+            partition_d: 0.0,
         }
     }
 }
@@ -192,6 +205,9 @@ impl Shape {
 /// forces only where the Tresca limit binds, and at a blend of 1 most steel datasets stayed below
 /// ENR 2), Kienzle exponent, BUE rake shift (rad), channel-matrix scale.
 pub fn strength_range(family: Family, id: &str) -> (f64, f64) {
+    if family == Family::D {
+        return forms_d::strength_range(id);
+    }
     match id {
         "heat_partition" if family == Family::C => (0.02, 2.0),
         "edge_ploughing" => (2e-6, 80e-6),
@@ -214,12 +230,13 @@ pub const FAMILY_C_MU: f64 = 0.5;
 
 /// The in-model hooks of mechanism `id` at strength `s` for one condition. `t_gate` is the BUE
 /// gate temperature of the dataset and `base` the condition's solution without the mechanism.
+/// Family d has its own forms ([`forms_d::mods`]) and never calls this.
 pub fn mods(family: Family, id: &str, s: f64, shape: &Shape, c: &Cond, base: &Solution, t_gate: f64) -> Mods {
     let mut m = Mods::none();
     match id {
         "tool_chip_friction" => {
             m.friction = Some(match family {
-                Family::A => {
+                Family::A | Family::D => {
                     m.friction_blend = s;
                     Zorev { mu0: shape.zorev_mu0, q: shape.zorev_q, a: shape.zorev_a }
                 }
@@ -274,6 +291,41 @@ pub fn wear_profile(speeds_in_run_order: &[f64], taylor_n: f64) -> Vec<f64> {
         acc += d;
     }
     out
+}
+
+/// Applies decoy `hidden` to the noise-free truth `with` (rows in design order, `run_order` the run
+/// position of each) and returns its parameter; `None` (nothing drawn, nothing changed) for a
+/// mechanism or a null. `decoy:gain`: one factor 1 +- 5-15 % on both forces; `decoy:outlier`: one
+/// row's forces off by +15-35 % or -9-21 %; `decoy:drift`: both forces drifting 5-15 % over the run.
+pub fn decoy(hidden: &str, rng: &mut ChaCha8Rng, with: &mut [[f64; 4]], run_order: &[usize]) -> Option<f64> {
+    let n = with.len();
+    match hidden {
+        "decoy:gain" => {
+            let g = 1.0 + if rng.gen_bool(0.5) { 1.0 } else { -1.0 } * rng.gen_range(0.05..0.15);
+            for y in with.iter_mut() {
+                y[0] *= g;
+                y[1] *= g;
+            }
+            Some(g)
+        }
+        "decoy:outlier" => {
+            let f = 1.0 + if rng.gen_bool(0.5) { 1.0 } else { -0.6 } * rng.gen_range(0.15..0.35);
+            let i = rng.gen_range(0..n);
+            with[i][0] *= f;
+            with[i][1] *= f;
+            Some(f)
+        }
+        "decoy:drift" => {
+            let dr = if rng.gen_bool(0.5) { 1.0 } else { -1.0 } * rng.gen_range(0.05..0.15);
+            for (i, y) in with.iter_mut().enumerate() {
+                let g = 1.0 + dr * run_order[i] as f64 / (n - 1).max(1) as f64;
+                y[0] *= g;
+                y[1] *= g;
+            }
+            Some(dr)
+        }
+        _ => None,
+    }
 }
 
 #[cfg(test)]

@@ -18,11 +18,17 @@
 //!   mechanism is on); C0 such that sigma'_N = k_AB (1 + pi/2 - 2a - 2 C0 n_eq) equals sigma_N;
 //!   delta minimising Fc (Oxley's minimum-work assumption).
 //!
+//! Family `d` uses this solver unchanged; its mechanisms enter through neutral hooks of [`Mods`]
+//! (`primary_mult`, `tanh_softening`, `partition_d`, `hybrid_friction`; `forms_d.rs`), which leave
+//! family a's arithmetic bit-identical when off.
+//!
 //! Search ranges C0 in [2, 10], phi in [5, 45] deg, delta in [0.005, 0.2] (Lalwani's ranges, phi
 //! widened). Every loop is capped; a condition with no root is an error, never a silent value.
 
 use std::f64::consts::{FRAC_PI_4, PI};
 
+use super::energy::weiner_beta;
+use super::forms_d;
 use super::material::{Cond, Consts, Solution};
 use super::mechanism::Mods;
 
@@ -89,12 +95,17 @@ pub fn state(c: &Cond, k: &Consts, mods: &Mods, phi: f64, c0: f64, delta: f64) -
     let gamma_ab = a.cos() / (2.0 * phi.sin() * cpa);
     let eps_ab = gamma_ab / SQRT3;
     let epsdot_ab = c0 * vs / (SQRT3 * l_ab);
-    let flow = |eps: f64, rate: f64, t: f64| k.jc.stress(eps, rate, t, mods.exp_softening) * mods.flow_mult;
+    let flow = |eps: f64, rate: f64, t: f64| {
+        let sigma = k.jc.stress(eps, rate, t, mods.exp_softening) * mods.flow_mult;
+        // Family d's thermal-softening hook (neutral when `None`).
+        mods.tanh_softening.map_or(sigma, |ts| sigma * ts.factor(eps, t, k.jc.tm))
+    };
     // T_AB fixed point (F_s depends on k_AB(T_AB)); damped, capped at 100 steps.
     let mut t_ab = k.t_work + 200.0;
     let (mut k_ab, mut dt_sz) = (0.0, 0.0);
     for _ in 0..100 {
-        k_ab = flow(eps_ab, epsdot_ab, t_ab) / SQRT3;
+        // `primary_mult`: family d's size-effect hook on the primary zone only (1 = neutral, exact).
+        k_ab = flow(eps_ab, epsdot_ab, t_ab) / SQRT3 * mods.primary_mult;
         let fs = k_ab * l_ab;
         let s = k.cp_at(t_ab);
         let rt = k.rho * s * c.v * c.h / k.k_at(t_ab);
@@ -103,6 +114,9 @@ pub fn state(c: &Cond, k: &Consts, mods: &Mods, phi: f64, c0: f64, delta: f64) -
             let kappa = k.k_at(t_ab) / (k.rho * s);
             let beta_ls = 1.0 - loewen_shaw_r1(kappa, 2.0 * gamma_ab, c.v, c.h);
             (beta_b + mods.partition_blend * (beta_ls - beta_b)).clamp(0.0, 0.95)
+        } else if mods.partition_d > 0.0 {
+            // Family d: blend towards Weiner's (1955) shear-plane partition.
+            (beta_b + mods.partition_d * (weiner_beta(rt * phi.tan()) - beta_b)).clamp(0.0, 0.95)
         } else {
             beta_b
         };
@@ -146,15 +160,22 @@ pub fn state(c: &Cond, k: &Consts, mods: &Mods, phi: f64, c0: f64, delta: f64) -
         let (r2, _) = loewen_shaw_r2(q_flux, l_c, c.w, vc, k.k_at(t_ab), k.k_at(t_ab) / (k.rho * s), k.k_tool, dt_sz);
         dt_m *= 1.0 - mods.partition_blend.min(1.0) * (1.0 - r2);
     }
+    if mods.partition_d > 0.0 {
+        // Family d, interface: the tool takes its Péclet-dependent share of the frictional heat.
+        let kappa = k.k_at(t_ab) / (k.rho * s);
+        dt_m *= 1.0 - mods.partition_d.min(1.0) * forms_d::tool_share(k.k_at(t_ab), k.k_tool, vc, l_c, kappa);
+    }
     let t_int = k.t_work + dt_sz + k.psi * dt_m;
     let eps_int = (2.0 * gamma_ab + 0.5 * l_c / (delta * tc)) / SQRT3;
     let epsdot_int = vc / (SQRT3 * delta * tc);
     let k_chip = flow(eps_int, epsdot_int, t_int) / SQRT3;
     // Friction mechanism: Zorev's mean shear over k_chip instead of full sticking, blended in by
     // its strength (`Mods::friction_blend`).
-    let target = match mods.friction {
-        Some(z) => k_chip * (1.0 - mods.friction_blend * (1.0 - z.factor(sigma_n / k_chip, vc))),
-        None => k_chip,
+    // Family d: the hybrid Coulomb-Tresca law with speed-dependent mu (`forms_d::HybridFriction`).
+    let target = match (mods.friction, mods.hybrid_friction) {
+        (Some(z), _) => k_chip * (1.0 - mods.friction_blend * (1.0 - z.factor(sigma_n / k_chip, vc))),
+        (None, Some(hf)) => hf.target(k_chip, sigma_n, vc),
+        (None, None) => k_chip,
     };
     let sol = Solution { fc, ft, tc, t_int, t_ab, k_ab, phi };
     Some(State { sol, friction_gap: tau_int - target, normal_gap: sigma_n_b - sigma_n })
