@@ -201,11 +201,19 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             // power-law (Kienzle-type) size effects of exponent up to 1/2 over a feed range; the
             // local exponent 0.5 (l/h) / (1 + l/h) is 0.45 at l/h = 10, i.e. h = 0.3 mm (a bound
             // of 300 um capped it at 0.25 there, and left strong size effects unexplained).
-            params: vec![p("l_um", "um", 0.0, 3000.0, 0.0, 5.0)],
+            // w_chip is the share of the strengthening the chip's flow stress at the interface takes:
+            // 1 = every flow stress (Nix & Gao 1998 applied to the material), 0 = the primary shear
+            // zone only (Joshi & Melkote 2004 apply the strain gradient to the primary zone, whose
+            // thickness scales with h). The common level is the baseline's (relative to h_ref), but
+            // the primary zone's strengthening over the chip's is absolute: in Oxley's closure k_chip
+            // enters only tau_int = m_f k_chip, so the primary zone alone strengthened by
+            // F = sqrt(1 + l/h) is every flow stress times F with the interface factor times
+            // F^(w_chip - 1) (at most 1).
+            params: vec![p("l_um", "um", 0.0, 3000.0, 0.0, 5.0), p("w_chip", "-", 0.0, 1.0, 1.0, 0.0)],
             hook: Some(Hook::FlowMultiplier),
-            signature: "Fc and Ft up by the same factor at small h, Ft/Fc and chip unchanged",
+            signature: "Fc and Ft up by the same factor at small h, Ft/Fc and chip unchanged (w_chip = 1); with the primary zone alone (w_chip < 1) the chip also thins and Ft/Fc falls at small h",
             covariates: "at least three feeds",
-            confounders: &[M::EdgePloughing],
+            confounders: &[M::EdgePloughing, M::ToolChipFriction],
             separate_by: "add a second edge radius or a wider feed range: Ft/Fc stays flat for a size effect",
         },
         M::BuiltUpEdge => MechanismInfo {
@@ -286,7 +294,10 @@ pub fn set_hooks(
                 h.heat_partition_scale *= phi[0];
                 h.interface_heat_share *= phi[1];
             }
-            MechanismId::SizeEffect => h.flow_multiplier *= size_factor(phi[0], t, ctx.size_h_ref_m),
+            MechanismId::SizeEffect => {
+                h.flow_multiplier *= size_factor(phi[0], t, ctx.size_h_ref_m);
+                h.friction_factor *= nix_gao(phi[0], t).powf(phi[1] - 1.0);
+            }
             MechanismId::BuiltUpEdge => {
                 h.rake_shift_rad += phi[0].to_radians() * bue_indicator(ctx.bue_coordinate(tests, i), ctx.bue_onset)
             }
@@ -301,6 +312,11 @@ pub fn set_hooks(
 fn size_factor(l_um: f64, t: &CuttingTest, h_ref_m: f64) -> f64 {
     let l = l_um * 1e-6;
     ((1.0 + l / t.uncut_chip_thickness_m) / (1.0 + l / h_ref_m.max(1e-9))).sqrt()
+}
+
+/// The absolute Nix-Gao factor `sqrt(1 + l/h)` (Nix & Gao 1998), at least 1.
+fn nix_gao(l_um: f64, t: &CuttingTest) -> f64 {
+    (1.0 + l_um.max(0.0) * 1e-6 / t.uncut_chip_thickness_m).sqrt()
 }
 
 /// Applies the output-level part of mechanism `id` to `preds`: only the dynamometer cross-talk

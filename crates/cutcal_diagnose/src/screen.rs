@@ -20,7 +20,16 @@ use crate::stats;
 pub(crate) fn boundary_params(id: MechanismId) -> usize {
     let inf = info(id);
     let fitted = if id == MechanismId::BuiltUpEdge { 1 } else { inf.params.len() };
-    inf.params[..fitted].iter().filter(|p| p.off <= p.lower || p.off >= p.upper).count()
+    inf.params[..fitted - shape_params(id)].iter().filter(|p| p.off <= p.lower || p.off >= p.upper).count()
+}
+
+/// Fitted parameters that only shape a mechanism and have no effect when its strength is off (the
+/// size effect's `w_chip` at l = 0): they are last in its list, add no numerator degree of freedom
+/// to its F-test (unidentified under the null, so the test is on the strength; the calibrated
+/// null refits them in every replicate, which accounts for their selection), and count in the
+/// AICc and the residual degrees of freedom as any fitted parameter does.
+pub(crate) fn shape_params(id: MechanismId) -> usize {
+    usize::from(id == MechanismId::SizeEffect)
 }
 
 /// Parameters of a mechanism chosen on a grid rather than fitted (the built-up-edge onset): they
@@ -229,7 +238,7 @@ pub(crate) fn screen_and_refit(
         // values is preferred over one that needs the nuisance pushed to its bounds (Burnham &
         // Anderson 2002, Sec 2.2: AIC on the maximised likelihood, which here includes the prior's
         // pseudo-observations).
-        let p = f_test(current.rss, f.rss, d, n, f.k, boundary_params(s.id));
+        let p = f_test(current.rss, f.rss, d - shape_params(s.id), n, f.k, boundary_params(s.id));
         let grid_now = current_spec.mechanisms.iter().map(|m| grid_chosen(*m)).sum::<usize>();
         let daicc = stats::aicc(f.objective(), n, f.k + grid_now + grid_chosen(s.id))
             - stats::aicc(current.objective(), n, current.k + grid_now);
@@ -336,7 +345,7 @@ pub(crate) fn finite(v: f64) -> Option<f64> {
 
 #[cfg(test)]
 mod tests {
-    use super::{boundary_params, f_test};
+    use super::{boundary_params, f_test, shape_params};
     use crate::mechanism::MechanismId;
 
     #[test]
@@ -360,6 +369,9 @@ mod tests {
         assert_eq!(boundary_params(MechanismId::ThermalSoftening), 0);
         assert_eq!(boundary_params(MechanismId::BuiltUpEdge), 1);
         assert_eq!(boundary_params(MechanismId::ForceCrosstalk), 0);
+        // The size effect's strength l sits at its bound; its shape w_chip is not tested.
+        assert_eq!(boundary_params(MechanismId::SizeEffect), 1);
+        assert_eq!(shape_params(MechanismId::SizeEffect), 1);
     }
 
     #[test]
