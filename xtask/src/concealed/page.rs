@@ -21,7 +21,9 @@ detector (`--generate-only`: data, sealed truth and a generation summary, no dia
 detector was run on it only after the detector change of the thirteenth session was decided.
 Family `d` (family a's Oxley closure with every mechanism in a third form, neither a's nor the
 detector's) was generated blind the same way; its first diagnosis came after its forms were
-committed (`--family a,b,c,d`; `all` stays a, b, c).**
+committed (`--family a,b,c,d`; `all` stays a, b, c). That first run (51 % named at ENR >= 2) led to
+the fourteenth session's size-effect change, so family d is no longer blind for it; its seed 7 was
+a draw never diagnosed before.**
 
 ## Generator forward models
 
@@ -119,7 +121,7 @@ pub fn render(opts: &ConcealedOptions, sections: &[(Family, String)], seconds: f
             Family::B => "never tuned on; the README may quote it",
             Family::C => "never tuned on; first run after the detector change of the thirteenth session was decided",
             Family::D => {
-                "never tuned on; generated blind (`--generate-only`) when it was added, first run after its forms were fixed and committed"
+                "never tuned on; generated blind, its first run (before the fourteenth session's size-effect change) is in the hand section below"
             }
         };
         let _ = writeln!(s, "### Family {} ({label})\n\n{text}", f.as_str());
