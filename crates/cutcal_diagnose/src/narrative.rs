@@ -117,22 +117,21 @@ fn unexplained_next_test(pr: &Problem<'_>, cands: &[Candidate], base: &Fit, base
     let conditions = pr.groups.len();
     if let Some((c, a)) = fitting.iter().find_map(|c| c.stopped_by.map(|a| (c, a))) {
         let drift = if a == Artefact::Drift { " and repeat the first test at the end of the series" } else { "" };
-        if c.id == MechanismId::ForceCrosstalk {
-            return format!(
-                "check the force channels with dead weights in each direction (ISO 21612){drift}: {} and a \
-                 cross-talk from the cutting-force channel into the feed channel explain the mismatch about equally, \
-                 and the same check tells them apart",
-                a.describe()
-            );
-        }
-        return format!(
-            "check the force channels with dead weights in each direction (ISO 21612){drift}: {} explains the \
-             mismatch as well as {} does; if the channels hold their calibration, {} is the candidate ({})",
-            a.describe(),
-            c.id.as_str(),
-            c.id.as_str(),
-            info(c.id).separate_by
-        );
+        let check = format!("check the force channels with dead weights in each direction (ISO 21612){drift}");
+        let artefact = a.describe();
+        let id = c.id.as_str();
+        return if c.id == MechanismId::ForceCrosstalk {
+            format!(
+                "{check}: {artefact} and a cross-talk from the cutting-force channel into the feed channel explain \
+                 the mismatch about equally, and the same check tells them apart"
+            )
+        } else {
+            format!(
+                "{check}: {artefact} explains the mismatch as well as {id} does; if the channels hold their \
+                 calibration, {id} is the candidate ({})",
+                info(c.id).separate_by
+            )
+        };
     }
     if let Some(c) = fitting.first() {
         let at = t_optimal(pr, (base_spec, &base.x), (&c.spec, &c.fit.x))
