@@ -148,7 +148,11 @@ pub fn set_hooks(
         match id {
             MechanismId::EdgePloughing => {
                 let shape = ctx.edge_shape.as_ref().map_or(1.0, |s| s[i]);
-                h.edge_radius_m += phi[0] * 1e-6 * shape;
+                let r = phi[0] * 1e-6 * shape;
+                h.edge_radius_m += r;
+                if let Some(&w) = phi.get(1) {
+                    h.rake_shift_rad += w * edge_rake_shift(r, t);
+                }
             }
             MechanismId::FlankWear => {
                 h.wear_land_m += phi[0] * 1e-3 * ctx.wear_state.as_ref().map_or(0.0, |w| w[i]);
@@ -174,6 +178,19 @@ pub fn set_hooks(
             _ => {}
         }
     }
+}
+
+/// Lowest effective rake, rad, an edge is given: the extended Oxley closure has no solution far
+/// below it (nor does `CuttingConditions` accept -45 deg), and the shadow's rake table ends there.
+const EDGE_RAKE_FLOOR_RAD: f64 = -40.0 * std::f64::consts::PI / 180.0;
+
+/// The change of rake, rad, that an edge of radius `r_m` gives the chip at test `t`: its chord
+/// effective rake (Manjunathaiah & Endres 2000; `EdgePloughing::effective_rake_rad`) less the
+/// nominal rake, with the effective rake held at or above [`EDGE_RAKE_FLOOR_RAD`].
+fn edge_rake_shift(r_m: f64, t: &CuttingTest) -> f64 {
+    let Ok(edge) = cutcal_model::oxley::EdgePloughing::waldorf1998(r_m.clamp(0.0, 0.5e-3)) else { return 0.0 };
+    let eff = edge.effective_rake_rad(t.uncut_chip_thickness_m, t.rake_rad);
+    eff.max(EDGE_RAKE_FLOOR_RAD.min(t.rake_rad)) - t.rake_rad
 }
 
 /// Nix-Gao-type size factor `sqrt((1 + l/h) / (1 + l/h_ref))` with `l` in um (Nix & Gao 1998): the

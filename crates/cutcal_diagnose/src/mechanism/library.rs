@@ -18,9 +18,14 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             source: "Waldorf, DeVor & Kapoor 1998 slip-line ploughing (cutcal_model::oxley::edge); design note M1",
             // The effective edge radius; with `edge_radius_um` recorded, the per-test radius keeps the
             // recorded shape: r_i = r_e r_rec,i / mean(r_rec).
-            params: vec![p("r_e", "um", 0.0, 80.0, 0.0, 15.0)],
+            // w_rake is the share of the edge's effective rake the chip formation sees: 0 = the
+            // ploughing forces alone (Waldorf et al. 1998, chip formation on the nominal rake), 1 = the
+            // chip also forms on the chord of the edge above the stagnation point (Manjunathaiah &
+            // Endres 2000; `EdgePloughing::effective_rake_rad`), which thickens the chip and raises Ft
+            // most at small h/r_e. It has no effect at r_e = 0 (a shape parameter, `screen::shape_params`).
+            params: vec![p("r_e", "um", 0.0, 80.0, 0.0, 15.0), p("w_rake", "-", 0.0, 1.0, 0.0, 1.0)],
             hook: Some(Hook::EdgeRadius),
-            signature: "Fc +, Ft ++ (relative residual grows as r_e/h), chip thickness unchanged",
+            signature: "Fc +, Ft ++ (relative residual grows as r_e/h); chip unchanged with ploughing alone (w_rake = 0), thicker at small h when the edge's effective rake acts (w_rake > 0)",
             covariates: "uncut chip thickness; edge radius helps",
             confounders: &[M::FlankWear, M::SizeEffect, M::ForceCrosstalk],
             separate_by: "add a smaller and a larger feed (ploughing is additive: its relative share grows as 1/h) and measure the edge radius",

@@ -37,7 +37,11 @@ pub(super) fn grid(k: Knob) -> (Vec<f64>, f64) {
             (vec![-0.5, -0.35, -0.2, -0.1, 0.0, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0, 1.25, 1.5], 0.0)
         }
         Knob::Hook(Hook::RakeShift) => {
-            ([0.0, 2.0, 4.0, 6.0, 9.0, 12.0, 16.0, 20.0, 25.0].iter().map(|d: &f64| d.to_radians()).collect(), 0.0)
+            // Negative shifts for the edge's effective rake (down to its floor, -40 deg, less a
+            // positive nominal rake), positive ones for the built-up edge.
+            let deg =
+                [-45.0, -36.0, -28.0, -21.0, -15.0, -10.0, -6.0, -3.0, 0.0, 2.0, 4.0, 6.0, 9.0, 12.0, 16.0, 20.0, 25.0];
+            (deg.iter().map(|d: &f64| d.to_radians()).collect(), 0.0)
         }
         Knob::Hook(Hook::FlowMultiplier) => {
             (vec![-0.8, -0.6, -0.4, -0.2, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0], 0.0)

@@ -107,6 +107,36 @@ impl EdgePloughing {
         r * (1.0 - cos_s * cos_s).max(0.0).sqrt()
     }
 
+    /// Effective rake angle, rad, that the chip meets on this edge at uncut chip thickness `t1` on a
+    /// tool of nominal rake `rake_rad`: the chord from the stagnation point (height `c_s r_e`, the
+    /// same closure as [`Self::contact_length_m`]; material below it is ploughed) to the point where
+    /// the tool meets the free surface, on the arc or on the rake face beyond the arc's tangent point
+    /// (the chord effective rake of an edge-radiused tool, after Manjunathaiah & Endres 2000, J. Manuf.
+    /// Sci. Eng. 122, 384, and Kountanya & Endres 2001). At or below the stagnation height, the tangent
+    /// there. A sharp edge (r_e = 0) or `t1 >> r_e` gives the nominal rake.
+    #[must_use]
+    pub fn effective_rake_rad(&self, t1: f64, rake_rad: f64) -> f64 {
+        let r = self.edge_radius_m;
+        if r <= 0.0 {
+            return rake_rad;
+        }
+        // Edge centre at (0, r), chip on the -x side: the arc point of tangent rake theta is
+        // (-r cos theta, r (1 + sin theta)); the rake face is tangent at theta = rake.
+        let y_top = r * (1.0 + rake_rad.sin());
+        let y_s = (self.stagnation_height_ratio * r).min(y_top);
+        let theta_s = (y_s / r - 1.0).clamp(-1.0, 1.0).asin();
+        if t1 <= y_s {
+            return theta_s;
+        }
+        if t1 <= y_top {
+            // A chord's direction is the mean of the tangent directions at its ends (inscribed angle).
+            return 0.5 * (theta_s + (t1 / r - 1.0).clamp(-1.0, 1.0).asin());
+        }
+        let x_s = -r * theta_s.cos();
+        let x_p = -r * rake_rad.cos() + (t1 - y_top) * rake_rad.tan();
+        ((x_p - x_s) / (t1 - y_s)).atan()
+    }
+
     /// Ploughing forces per unit width `(P_c, P_t)`, N/m, for shear flow stress `k_pa` and shear
     /// angle `phi_rad` (Waldorf, DeVor & Kapoor 1998, the force equations of their slip-line field).
     #[must_use]
@@ -219,6 +249,35 @@ mod tests {
         assert!((big.contact_length_m(0.1e-3) / e.contact_length_m(0.1e-3) - 2.0).abs() < 1e-12);
         assert!(EdgePloughing::waldorf1998(-1e-6).is_err());
         assert_eq!(EdgePloughing::waldorf1998(0.0).unwrap().forces_n_per_m(4e8, 0.4, 1e-4), (0.0, 0.0));
+    }
+
+    #[test]
+    fn effective_rake_matches_the_chord_geometry_by_hand() {
+        // Independent coordinates (edge centre (0, r), arc x = -sqrt(r^2 - (y - r)^2)), r = 20 um,
+        // c_s = 0.3 so the stagnation point is at 6 um, x_s = -sqrt(400 - 196) = -14.2829 um:
+        // - t1 = 40 um, rake 0: the free-surface point is on the rake face at x = -20 um:
+        //   atan((-20 + 14.2829) / 34) = -9.54506 deg;
+        // - t1 = 20 um, rake 0: at the tangent point: atan(-5.7171 / 14) = -22.21350 deg;
+        // - t1 = 10 um: x_p = -sqrt(400 - 100) = -17.3205: atan(-3.0376 / 4) = -37.21350 deg;
+        // - t1 = 4 um (below 6 um): the tangent at the stagnation point, asin(-0.7) = -44.42700 deg;
+        // - rake 10 deg, t1 = 40 um: y_top = 23.4730 um, x_p = -19.6962 + 16.5270 tan 10 deg =
+        //   -16.7820 um: atan(-2.4991 / 34) = -4.20391 deg.
+        let e = EdgePloughing::waldorf1998(20e-6).unwrap();
+        let deg = |t1_um: f64, rake_deg: f64| e.effective_rake_rad(t1_um * 1e-6, rake_deg.to_radians()).to_degrees();
+        for (t1, rake, want) in [
+            (40.0, 0.0, -9.545_065),
+            (20.0, 0.0, -22.213_502),
+            (10.0, 0.0, -37.213_502),
+            (4.0, 0.0, -44.427_004),
+            (40.0, 10.0, -4.203_908),
+        ] {
+            assert!((deg(t1, rake) - want).abs() < 1e-5, "t1 {t1} rake {rake}: {} vs {want}", deg(t1, rake));
+        }
+        // Continuous at the tangent point, and the nominal rake far above the edge or with no edge.
+        let top = 20.0 * (1.0 + 10f64.to_radians().sin());
+        assert!((deg(top - 1e-9, 10.0) - deg(top + 1e-9, 10.0)).abs() < 1e-6);
+        assert!((deg(1e6, 10.0) - 10.0).abs() < 0.01);
+        assert_eq!(EdgePloughing::waldorf1998(0.0).unwrap().effective_rake_rad(1e-5, 0.1), 0.1);
     }
 
     #[test]
