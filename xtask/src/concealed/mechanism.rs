@@ -4,7 +4,7 @@
 //!
 //! | id | generator form (here) | detector form |
 //! |---|---|---|
-//! | edge_ploughing | Albrecht 1960: pressure p = (1 + pi/2) k and friction m_e k on the rounded edge below the stagnation point | Waldorf, DeVor & Kapoor 1998 slip-line |
+//! | edge_ploughing | Albrecht 1960: pressure p = (1 + pi/2) k and friction m_e k on the rounded edge below the stagnation point | Waldorf, DeVor & Kapoor 1998 slip-line, and the chord effective rake from the stagnation point |
 //! | flank_wear | uniform normal and shear stress on the land (Teitenberg, Bayoumi & Yucesan 1992), VB growing with cumulative cut length at a Taylor-type speed exponent | Smithey, Kapoor & DeVor 2001, VB linear in order |
 //! | tool_chip_friction | Zorev 1963 stick-slip with a power-law normal stress and a sliding-speed dependent mu (family c: replacing its Coulomb-Tresca law, Zorev's a = 0) | m_f0 (V/V_ref)^-p_v on k_chip |
 //! | thermal_softening | extra Zerilli-Armstrong exponential thermal factor exp(-c3 (T - Tr)) | kappa_T on (T - T_w) and a scale on the JC m |
