@@ -24,8 +24,8 @@ pub(crate) fn boundary_params(id: MechanismId) -> usize {
 }
 
 /// Fitted parameters that only shape a mechanism and have no effect when its strength is off (the
-/// size effect's `w_chip` at l = 0, the edge's `w_rake` at r_e = 0): they are last in its list, add no numerator degree of freedom
-/// to its F-test (unidentified under the null, so the test is on the strength; the calibrated
+/// size effect's `w_chip` at l = 0, the edge's `w_rake` at r_e = 0): they are last in its list, add
+/// no numerator degree of freedom to its F-test (unidentified under the null, so the test is on the strength; the calibrated
 /// null refits them in every replicate, which accounts for their selection), and count in the
 /// AICc and the residual degrees of freedom as any fitted parameter does.
 pub(crate) fn shape_params(id: MechanismId) -> usize {

@@ -15,7 +15,7 @@ pub fn info(id: MechanismId) -> MechanismInfo {
         M::EdgePloughing => MechanismInfo {
             id,
             title: "cutting-edge ploughing (edge radius rubbing the machined surface)",
-            source: "Waldorf, DeVor & Kapoor 1998 slip-line ploughing (cutcal_model::oxley::edge); design note M1",
+            source: "Waldorf, DeVor & Kapoor 1998 slip-line ploughing; the edge's chord effective rake after Manjunathaiah & Endres 2000 (cutcal_model::oxley::edge); design note M1",
             // The effective edge radius; with `edge_radius_um` recorded, the per-test radius keeps the
             // recorded shape: r_i = r_e r_rec,i / mean(r_rec).
             // w_rake is the share of the edge's effective rake the chip formation sees: 0 = the
