@@ -23,7 +23,7 @@ use crate::mechanism::{info, testable, Context, MechanismId};
 use crate::narrative::{explain, next_test, result_of};
 use crate::problem::{condition_groups, loco_of, rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
-use crate::screen::{boundary_params, cosine, f_test, grid_chosen, screen_and_refit, shape_params};
+use crate::screen::{boundary_params, cosine, f_test, grid_chosen, screen_and_refit, tested_df};
 use crate::simulator::Simulator;
 use crate::stats;
 use crate::verdict::decide;
@@ -288,7 +288,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         let artefact = artefact.filter(|(b, a, _)| {
             let c = &cands[*b];
             let beyond = fit_artefact(&pr, &c.spec, &c.fit.x, a.artefact, a.g).map(|j| {
-                let d = j.k.saturating_sub(a.k).saturating_sub(shape_params(c.id));
+                let d = tested_df(c.id, j.k.saturating_sub(a.k));
                 f_test(a.rss, j.rss, d, n, j.k + grid_chosen(c.id), boundary_params(c.id))
             });
             match beyond {

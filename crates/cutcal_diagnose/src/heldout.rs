@@ -6,7 +6,7 @@ use crate::error::DiagnoseError;
 use crate::fit::{Fit, Spec};
 use crate::mechanism::MechanismId;
 use crate::problem::{loco_of, Candidate, Loco, Problem};
-use crate::screen::{boundary_params, f_test, grid_chosen, shape_params};
+use crate::screen::{boundary_params, f_test, grid_chosen, tested_df};
 use crate::stats;
 
 /// Fills `loco_after` of the candidates `sig` (indices into `cands`, the significant ones with a
@@ -54,7 +54,7 @@ pub(crate) fn heldout_round(
             }
             let f = &fold[s + 1];
             let d = f.k - fold[0].k;
-            let p = f_test(nb, f.rss, d - shape_params(cands[i].id), n_tr, f.k, boundary_params(cands[i].id));
+            let p = f_test(nb, f.rss, tested_df(cands[i].id, d), n_tr, f.k, boundary_params(cands[i].id));
             let a = stats::aicc(f.objective(), n_tr, f.k + grid_chosen(cands[i].id));
             if p < alpha_round && best.is_none_or(|(b, _)| a < b) {
                 best = Some((a, s + 1));

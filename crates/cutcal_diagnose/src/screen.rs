@@ -25,11 +25,18 @@ pub(crate) fn boundary_params(id: MechanismId) -> usize {
 
 /// Fitted parameters that only shape a mechanism and have no effect when its strength is off (the
 /// size effect's `w_chip` at l = 0, the edge's `w_rake` at r_e = 0): they are last in its list, add
-/// no numerator degree of freedom to its F-test (unidentified under the null, so the test is on the strength; the calibrated
-/// null refits them in every replicate, which accounts for their selection), and count in the
-/// AICc and the residual degrees of freedom as any fitted parameter does.
+/// no numerator degree of freedom to its F-test (unidentified under the null, so the test is on the
+/// strength; the calibrated null refits them in every replicate, which accounts for their
+/// selection), and count in the AICc and the residual degrees of freedom as any fitted parameter
+/// does.
 pub(crate) fn shape_params(id: MechanismId) -> usize {
     usize::from(matches!(id, MechanismId::SizeEffect | MechanismId::EdgePloughing))
+}
+
+/// Numerator degrees of freedom of mechanism `id`'s F-test when the fit gained `added` parameters
+/// with it: its shape parameters are not tested ([`shape_params`]).
+pub(crate) fn tested_df(id: MechanismId, added: usize) -> usize {
+    added.saturating_sub(shape_params(id))
 }
 
 /// Parameters of a mechanism chosen on a grid rather than fitted (the built-up-edge onset): they
@@ -238,7 +245,7 @@ pub(crate) fn screen_and_refit(
         // values is preferred over one that needs the nuisance pushed to its bounds (Burnham &
         // Anderson 2002, Sec 2.2: AIC on the maximised likelihood, which here includes the prior's
         // pseudo-observations).
-        let p = f_test(current.rss, f.rss, d - shape_params(s.id), n, f.k, boundary_params(s.id));
+        let p = f_test(current.rss, f.rss, tested_df(s.id, d), n, f.k, boundary_params(s.id));
         let grid_now = current_spec.mechanisms.iter().map(|m| grid_chosen(*m)).sum::<usize>();
         let daicc = stats::aicc(f.objective(), n, f.k + grid_now + grid_chosen(s.id))
             - stats::aicc(current.objective(), n, current.k + grid_now);
