@@ -165,14 +165,25 @@ pub struct ShadowChoice {
     pub class: MaterialClass,
     /// Its shadow, built and fitted.
     pub shadow: crate::shadow::ShadowSimulation,
-    /// Each class whose shadow was built: its unsolved tests and fitted RMS (%), best first.
+    /// Each class whose shadow was built: its unsolved tests and fitted RMS (%), least
+    /// [`shadow_cost`] first.
     pub fitted: Vec<(MaterialClass, usize, f64)>,
+}
+
+/// What a shadow costs the diagnosis, in per cent: its fitted RMS misfit to the external simulation
+/// plus the share of tests it leaves without a solution. A test without a solution is left out of
+/// the diagnosis, and a misfit makes every signature approximate, so each per cent of the tests lost
+/// counts as a per cent of misfit. An AISI 1045 simulation with one test of 16 where Oxley's sticking
+/// condition has no solution in the steel shadow (RMS 0.5 %) went to a titanium shadow that solved
+/// all 16 at 22 % when the solved count came first (concealed family a, dataset 138).
+fn shadow_cost(s: &crate::shadow::ShadowSummary, tests: usize) -> f64 {
+    s.rms_pct + 100.0 * s.unsolved.len() as f64 / tests.max(1) as f64
 }
 
 /// The shadow of the class that matches `external` best *after* the shadow fit: every class whose
 /// nominal set solves at least half the tests ([`rank`]) is built and fitted (`nominal_jc` replaces
-/// the class's own JC set when given), and the one with the fewest unsolved tests and then the
-/// smallest fitted RMS is kept. The pre-fit ranking alone can mislead: a class whose nominal set
+/// the class's own JC set when given), and the one of least [`shadow_cost`] (fitted RMS plus the
+/// share of tests left unsolved) is kept. The pre-fit ranking alone can mislead: a class whose nominal set
 /// is closest at one common force level can be the one whose fit fails once the level is moved
 /// into its JC set (a steel's thermal data under an aluminium's flow stress leave Oxley's sticking
 /// condition without a solution; the material-spread check of `docs/concealed.md`).
@@ -201,10 +212,8 @@ pub fn best_shadow(
         }
     }
     // Stable: among equals the pre-fit ranking decides.
-    built.sort_by(|(_, a), (_, b)| {
-        let (sa, sb) = (a.summary(), b.summary());
-        sa.unsolved.len().cmp(&sb.unsolved.len()).then(sa.rms_pct.total_cmp(&sb.rms_pct))
-    });
+    let n = tests.len();
+    built.sort_by(|(_, a), (_, b)| shadow_cost(a.summary(), n).total_cmp(&shadow_cost(b.summary(), n)));
     let fitted = built.iter().map(|(c, s)| (*c, s.summary().unsolved.len(), s.summary().rms_pct)).collect();
     let Some((class, shadow)) = built.into_iter().next() else {
         return Err(first_err.unwrap_or_else(|| crate::DiagnoseError::Inconsistent("no material class".into())));
@@ -219,8 +228,8 @@ mod tests {
     #[test]
     fn the_shadow_kept_is_the_best_fitted_one() {
         // External numbers from the aluminium class itself with a 10 % higher level, 6 conditions:
-        // every shadow built is fitted, the one kept has the fewest unsolved tests and the smallest
-        // RMS of them, and here it is the aluminium one, fitted to within 2 %.
+        // every shadow built is fitted, the one kept has the least cost (fitted RMS plus the share
+        // of tests unsolved), and here it is the aluminium one, fitted to within 2 %.
         let (m, jc) = MaterialClass::Aluminium.material();
         let jc = JcParams { a_pa: jc.a_pa * 1.1, b_pa: jc.b_pa * 1.1, ..jc };
         let tests: Vec<CuttingTest> =
@@ -238,14 +247,37 @@ mod tests {
         assert_eq!(choice.ranked.len(), 3);
         let best = choice.shadow.summary();
         assert_eq!(choice.fitted[0], (choice.class, best.unsolved.len(), best.rms_pct));
+        let cost = |unsolved: usize, rms: f64| rms + 100.0 * unsolved as f64 / tests.len() as f64;
         for &(_, unsolved, rms) in &choice.fitted[1..] {
-            assert!(best.unsolved.len() <= unsolved);
-            if best.unsolved.len() == unsolved {
-                assert!(best.rms_pct <= rms, "{} > {rms}", best.rms_pct);
-            }
+            assert!(cost(best.unsolved.len(), best.rms_pct) <= cost(unsolved, rms), "{:?}", choice.fitted);
         }
         assert_eq!(choice.class, MaterialClass::Aluminium, "{:?}", choice.ranked);
         assert!(best.rms_pct < 2.0, "{}", best.rms_pct);
+    }
+
+    fn summary(material: MaterialClass, unsolved: usize, rms_pct: f64) -> crate::shadow::ShadowSummary {
+        crate::shadow::ShadowSummary {
+            material: format!("{material:?}"),
+            jc: material.material().1,
+            friction_factor: 1.0,
+            rms_pct,
+            unsolved: (0..unsolved).map(|i| (format!("{i}"), "no solution".to_string())).collect(),
+            converged: true,
+            fit_discarded: false,
+        }
+    }
+
+    #[test]
+    fn a_close_shadow_that_loses_one_test_beats_a_poor_one_that_solves_all() {
+        // Concealed family a, dataset 138 (16 tests): steel 15 solved at RMS 0.5 % costs
+        // 0.5 + 100/16 = 6.75 %; titanium 16 solved at 22.1 % costs 22.1 %.
+        let steel = summary(MaterialClass::Steel, 1, 0.5);
+        let titanium = summary(MaterialClass::Titanium, 0, 22.1);
+        assert!((shadow_cost(&steel, 16) - 6.75).abs() < 1e-12);
+        assert!((shadow_cost(&titanium, 16) - 22.1).abs() < 1e-12);
+        // Half the tests lost at 0.1 % (50.1 %) against all solved at 10 % (10 %): the second is kept.
+        let half = shadow_cost(&summary(MaterialClass::Steel, 8, 0.1), 16);
+        assert!(half > shadow_cost(&summary(MaterialClass::Titanium, 0, 10.0), 16), "{half}");
     }
 
     #[test]

@@ -70,8 +70,8 @@ pub(crate) fn mode_a(
                     })
                     .collect();
                 cfg.simulator_notes.push(format!(
-                    "no --material: generic class chosen from the simulation: {:?}, the fewest unsolved tests and \
-                     then the smallest fitted RMS ({})",
+                    "no --material: generic class chosen from the simulation: {:?}, the least fitted RMS plus \
+                     share of tests unsolved ({})",
                     choice.class,
                     why.join("; ")
                 ));
