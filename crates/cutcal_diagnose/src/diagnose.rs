@@ -465,5 +465,6 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         simulator_notes,
         shadow_rms_pct: None,
         shadow_friction_factor: None,
+        shadow_edge_radius_um: None,
     })
 }

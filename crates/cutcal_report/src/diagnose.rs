@@ -239,6 +239,7 @@ mod tests {
         // shadow keeps Oxley's sticking contact, and the JSON says both.
         assert!(r.shadow_rms_pct.is_some_and(|x| x < 3.0), "{:?}", r.shadow_rms_pct);
         assert_eq!(r.shadow_friction_factor, Some(1.0));
+        assert_eq!(r.shadow_edge_radius_um, Some(0.0));
     }
 
     #[test]

@@ -91,10 +91,16 @@ pub(crate) fn mode_a(
                 sm.jc.n,
                 sm.jc.c,
                 sm.jc.m,
-                if sm.friction_factor < 1.0 {
-                    format!(", tool-chip interface factor m_f {:.2} (tau_int = m_f k_chip)", sm.friction_factor)
-                } else {
-                    String::new()
+                match (sm.friction_factor < 1.0, sm.edge_radius_m > 0.0) {
+                    (false, false) => String::new(),
+                    (true, false) => format!(", tool-chip interface factor m_f {:.2} (tau_int = m_f k_chip)", sm.friction_factor),
+                    (false, true) => format!(", edge radius {:.1} um (ploughing in the simulation)", sm.edge_radius_m * 1e6),
+                    (true, true) => format!(
+                        ", tool-chip interface factor m_f {:.2} (tau_int = m_f k_chip) and edge radius {:.1} um (ploughing \
+                         in the simulation)",
+                        sm.friction_factor,
+                        sm.edge_radius_m * 1e6
+                    ),
                 },
                 sm.rms_pct,
                 if sm.converged { "" } else { "; the shadow fit stopped at its iteration cap" },
@@ -135,6 +141,7 @@ pub(crate) fn mode_a(
             let mut report = diagnose(&sim, &kept, &cfg)?;
             report.shadow_rms_pct = Some(sm.rms_pct);
             report.shadow_friction_factor = Some(sm.friction_factor);
+            report.shadow_edge_radius_um = Some(sm.edge_radius_m * 1e6);
             Ok(report)
         }
         Err(e) => {

@@ -25,6 +25,8 @@ pub(super) struct ShadowFit<'a> {
     pub(super) starts: Vec<OxleyPrediction>,
     /// Whether the interface factor m_f is a fifth global (else m_f = 1, Oxley's sticking).
     pub(super) with_friction: bool,
+    /// Whether the edge radius (um) is a global after the others (else the shadow is sharp).
+    pub(super) with_edge: bool,
 }
 
 impl ShadowFit<'_> {
@@ -44,6 +46,15 @@ impl ShadowFit<'_> {
             p[4]
         } else {
             1.0
+        }
+    }
+
+    /// The shadow's edge radius, m.
+    pub(super) fn edge(&self, p: &[f64]) -> f64 {
+        if self.with_edge {
+            p[4 + usize::from(self.with_friction)] * 1e-6
+        } else {
+            0.0
         }
     }
 
@@ -68,6 +79,11 @@ impl ShadowFit<'_> {
             lo.push(FRICTION_FACTOR_MIN);
             hi.push(1.0);
         }
+        if self.with_edge {
+            names.push("r_e_um".into());
+            lo.push(0.0);
+            hi.push(EDGE_RADIUS_MAX_UM);
+        }
         let bounds = Bounds::new(names, lo, hi).map_err(|e| DiagnoseError::Fit(e.to_string()))?;
         let opts =
             LmOptions { max_iterations: 30, gradient_tolerance: 1e-6, cost_tolerance: 1e-6, step_tolerance: 1e-6 };
@@ -82,6 +98,8 @@ impl ShadowFit<'_> {
 
 /// Lower bound of the shadow's interface factor m_f (tau_int = m_f k_chip).
 const FRICTION_FACTOR_MIN: f64 = 0.3;
+/// Upper bound of the shadow's own edge radius, um (honed and worn edges of practical tools).
+const EDGE_RADIUS_MAX_UM: f64 = 60.0;
 /// The shadow tries m_f only when the four globals leave more than this misfit (RMS, %).
 pub(super) const FRICTION_TRY_RMS_PCT: f64 = 3.0;
 /// m_f is kept only when it brings the misfit below this fraction of the four-global fit's: an
@@ -91,14 +109,15 @@ pub(super) const FRICTION_GATE: f64 = 0.5;
 
 impl Problem for ShadowFit<'_> {
     fn parameter_count(&self) -> usize {
-        4 + usize::from(self.with_friction)
+        4 + usize::from(self.with_friction) + usize::from(self.with_edge)
     }
     fn residual_count(&self) -> usize {
         3 * self.tests.len() + 3
     }
     fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
         let x: Vec<f64> = p.iter().copied().collect();
-        let sh = Shadow { material: self.material, jc: self.jc(&x), friction: self.friction(&x) };
+        let sh =
+            Shadow { material: self.material, jc: self.jc(&x), friction: self.friction(&x), edge_m: self.edge(&x) };
         let ys: Vec<Result<[f64; 5], DiagnoseError>> = self
             .tests
             .par_iter()

@@ -84,6 +84,10 @@ pub(super) struct Shadow<'a> {
     /// The shadow's own tool-chip interface factor m_f (tau_int = m_f k_chip; 1 = Oxley's full
     /// sticking); the friction mechanism's factor multiplies it.
     pub(super) friction: f64,
+    /// The shadow's own cutting-edge radius, m (0 = sharp; fitted behind a gate where the external
+    /// simulation carries ploughing forces, e.g. an FE run with the real edge): the edge mechanism's
+    /// radius adds to it.
+    pub(super) edge_m: f64,
 }
 
 impl Shadow<'_> {
@@ -95,7 +99,7 @@ impl Shadow<'_> {
         knob: Option<(Knob, f64)>,
         start: Option<&OxleyPrediction>,
     ) -> Result<([f64; 5], OxleyPrediction), DiagnoseError> {
-        let mut h = Hooks { friction_factor: self.friction, ..Hooks::NEUTRAL };
+        let mut h = Hooks { friction_factor: self.friction, edge_radius_m: self.edge_m, ..Hooks::NEUTRAL };
         let mut options = OxleyOptions::wide();
         let mut scaled: Material;
         let mut material = self.material;
@@ -103,6 +107,7 @@ impl Shadow<'_> {
         match knob {
             Some((Knob::Hook(Hook::FlowMultiplier), u)) => h.flow_multiplier = u.exp(),
             Some((Knob::Hook(Hook::FrictionFactor), u)) => h.friction_factor = self.friction * u,
+            Some((Knob::Hook(Hook::EdgeRadius), u)) => h.edge_radius_m = self.edge_m + u,
             Some((Knob::Hook(k), u)) => h = k.with(h, u),
             Some((Knob::Eta, u)) => options.eta = u,
             // Oxley's psi and the interface heat share both scale dT_M; the share carries the
