@@ -164,7 +164,10 @@ impl ShadowSimulation {
             let mut start_e = x.clone();
             start_e.push(10.0);
             let (xe, conv_e) = problem.run(start_e)?;
-            if problem.rms_pct(&xe).is_some_and(|re| re < FRICTION_GATE * rms_now) {
+            // Kept only where it also brings the shadow within the level at which its signatures
+            // are trusted: an edge that leaves more has not explained the simulation's departure
+            // (another closure's, e.g. a minimum-energy shear angle), it has only absorbed part of it.
+            if problem.rms_pct(&xe).is_some_and(|re| re < FRICTION_GATE * rms_now && re <= SHADOW_CAUTION_RMS_PCT) {
                 (x, converged) = (xe, conv_e);
             } else {
                 problem.with_edge = false;
