@@ -96,6 +96,36 @@ impl ShadowFit<'_> {
     }
 }
 
+impl ShadowFit<'_> {
+    /// One more global after the fit `x` (switched on by `switch`, appended to the parameters and
+    /// started at `start`), behind the gate: tried when `x` leaves more than
+    /// [`FRICTION_TRY_RMS_PCT`] on at least three tests (nine numbers), kept only when the new fit
+    /// brings the misfit below [`FRICTION_GATE`] times that and at most to `ceiling` (%). Returns
+    /// the fit kept, and leaves the switch as that fit has it.
+    pub(super) fn try_global(
+        &mut self,
+        x: Vec<f64>,
+        converged: bool,
+        switch: fn(&mut Self, bool),
+        start: f64,
+        ceiling: f64,
+    ) -> Result<(Vec<f64>, bool), DiagnoseError> {
+        let Some(before) = self.rms_pct(&x).filter(|&r| self.tests.len() >= 3 && r > FRICTION_TRY_RMS_PCT) else {
+            return Ok((x, converged));
+        };
+        switch(self, true);
+        let mut trial = x.clone();
+        trial.push(start);
+        let (xt, conv_t) = self.run(trial)?;
+        if self.rms_pct(&xt).is_some_and(|r| r < FRICTION_GATE * before && r <= ceiling) {
+            Ok((xt, conv_t))
+        } else {
+            switch(self, false);
+            Ok((x, converged))
+        }
+    }
+}
+
 /// Lower bound of the shadow's interface factor m_f (tau_int = m_f k_chip).
 const FRICTION_FACTOR_MIN: f64 = 0.3;
 /// Upper bound of the shadow's own edge radius, um (honed and worn edges of practical tools).

@@ -30,7 +30,7 @@ use crate::error::DiagnoseError;
 use crate::hooks::{Hook, Hooks};
 use crate::simulator::{ParamSpec, Prediction, Simulator};
 use crate::spline::Table;
-use globals::{ShadowFit, FRICTION_GATE, FRICTION_TRY_RMS_PCT};
+use globals::ShadowFit;
 use knobs::{tables_at, Shadow};
 
 /// What the shadow fit found (for the report).
@@ -139,40 +139,18 @@ impl ShadowSimulation {
             with_edge: false,
         };
         let start = vec![level0, nominal.n.clamp(0.05, 0.8), nominal.c.clamp(1e-4, 0.2), nominal.m.clamp(0.3, 2.5)];
-        let (mut x, mut converged) = problem.run(start)?;
+        let (x, converged) = problem.run(start)?;
         // The interface factor as a fifth global, kept only when it halves the misfit (see
         // `FRICTION_GATE`).
-        // Five globals need at least three tests (nine numbers) to be told apart.
-        let rms4 = problem.rms_pct(&x).filter(|_| fit_tests.len() >= 3);
-        if let Some(rms4) = rms4.filter(|&r| r > FRICTION_TRY_RMS_PCT) {
-            problem.with_friction = true;
-            let mut start5 = x.clone();
-            start5.push(1.0);
-            let (x5, conv5) = problem.run(start5)?;
-            if problem.rms_pct(&x5).is_some_and(|r5| r5 < FRICTION_GATE * rms4) {
-                (x, converged) = (x5, conv5);
-            } else {
-                problem.with_friction = false;
-            }
-        }
+        let (x, converged) = problem.try_global(x, converged, |p, on| p.with_friction = on, 1.0, f64::INFINITY)?;
         // The edge radius as a further global, behind the same gate: an external simulation with a
         // rounded edge (an FE run with the tool's real edge) carries ploughing forces that no
-        // flow-stress global reproduces (Waldorf, DeVor & Kapoor 1998, as the edge mechanism).
-        let rms_now = problem.rms_pct(&x).filter(|_| fit_tests.len() >= 3);
-        if let Some(rms_now) = rms_now.filter(|&r| r > FRICTION_TRY_RMS_PCT) {
-            problem.with_edge = true;
-            let mut start_e = x.clone();
-            start_e.push(10.0);
-            let (xe, conv_e) = problem.run(start_e)?;
-            // Kept only where it also brings the shadow within the level at which its signatures
-            // are trusted: an edge that leaves more has not explained the simulation's departure
-            // (another closure's, e.g. a minimum-energy shear angle), it has only absorbed part of it.
-            if problem.rms_pct(&xe).is_some_and(|re| re < FRICTION_GATE * rms_now && re <= SHADOW_CAUTION_RMS_PCT) {
-                (x, converged) = (xe, conv_e);
-            } else {
-                problem.with_edge = false;
-            }
-        }
+        // flow-stress global reproduces (Waldorf, DeVor & Kapoor 1998, as the edge mechanism). It is
+        // kept only where it also brings the shadow within the level at which its signatures are
+        // trusted: an edge that leaves more has not explained the simulation's departure (another
+        // closure's, e.g. a minimum-energy shear angle), it has only absorbed part of it.
+        let (x, converged) =
+            problem.try_global(x, converged, |p, on| p.with_edge = on, 10.0, SHADOW_CAUTION_RMS_PCT)?;
         // The fitted set, unless it leaves more tests without a solution than the nominal set did
         // (then the nominal set at the start level stands, and the report says so).
         let mut jc = problem.jc(&x);
@@ -315,6 +293,7 @@ impl Simulator for ShadowSimulation {
 
 #[cfg(test)]
 mod tests {
+    use super::globals::FRICTION_TRY_RMS_PCT;
     use super::*;
 
     fn summary(rms_pct: f64) -> ShadowSummary {
