@@ -1,7 +1,8 @@
 //! The shadow's global fit (issue 10, item 1): bounded least squares of cutcal's extended Oxley
 //! model (Oxley 1989; Lalwani, Mehta & Jain 2009) against the external simulation's `ln Fc, ln Ft,
-//! ln t2`, over a flow-stress level and the JC n, C and m (weak priors), and, behind a gate, the
-//! tool-chip interface factor m_f (`ShadowSimulation::build`).
+//! ln t2`, over a flow-stress level and the JC n, C and m (weak priors), and, behind a gate
+//! (`ShadowFit::try_global`), the tool-chip interface factor m_f and the shadow's own edge radius
+//! (Waldorf, DeVor & Kapoor 1998 ploughing) (`ShadowSimulation::build`).
 
 use cutcal_ident::lm::{minimise, Bounds, LmOptions, Problem};
 use cutcal_ident::IdentError;
@@ -94,9 +95,7 @@ impl ShadowFit<'_> {
             Err(_) => (start, false),
         })
     }
-}
 
-impl ShadowFit<'_> {
     /// One more global after the fit `x` (switched on by `switch`, appended to the parameters and
     /// started at `start`), behind the gate: tried when `x` leaves more than
     /// [`FRICTION_TRY_RMS_PCT`] on at least three tests (nine numbers), kept only when the new fit
