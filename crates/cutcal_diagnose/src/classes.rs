@@ -41,7 +41,7 @@ impl MaterialClass {
     /// - Titanium: Ti6Al4V, typical handbook values (rho 4430 kg/m^3, Cp = 546 + 0.24 T J/(kg K),
     ///   K = 6.7 + 0.0135 T W/(m K), Tm 1660 degC), JC of Lee & Lin 1998 (A 782.7, B 498.4 MPa,
     ///   n 0.28, C 0.028, m 1.0).
-    /// - Aluminium: AA6082, rho Cp of the paper's Table 3 (ref [22]), K 170 W/(m K) (typical
+    /// - Aluminium: AA6082, rho Cp of the paper's Table 3 (ref. 22), K 170 W/(m K) (typical
     ///   wrought 6xxx-T6), Tm 582 degC, JC of the paper's Table 5.
     #[must_use]
     pub fn material(self) -> (Material, JcParams) {
@@ -166,26 +166,26 @@ pub struct ShadowChoice {
     /// Its shadow, built and fitted.
     pub shadow: crate::shadow::ShadowSimulation,
     /// Each class whose shadow was built: its unsolved tests and fitted RMS (%), least
-    /// [`shadow_cost`] first.
+    /// `shadow_cost` first.
     pub fitted: Vec<(MaterialClass, usize, f64)>,
 }
 
-/// What a shadow costs the diagnosis, in per cent: its fitted RMS misfit to the external simulation
-/// plus the share of tests it leaves without a solution. A test without a solution is left out of
-/// the diagnosis, and a misfit makes every signature approximate, so each per cent of the tests lost
-/// counts as a per cent of misfit. An AISI 1045 simulation with one test of 16 where Oxley's sticking
-/// condition has no solution in the steel shadow (RMS 0.5 %) went to a titanium shadow that solved
-/// all 16 at 22 % when the solved count came first (concealed family a, dataset 138).
+/// What a shadow costs the diagnosis, in per cent: its fitted RMS misfit to the external
+/// simulation plus the share of tests it leaves without a solution. A test without a solution is
+/// left out of the diagnosis, and a misfit makes every signature approximate, so each per cent of
+/// the tests lost counts as a per cent of misfit. An AISI 1045 simulation with one test of 16 where
+/// Oxley's sticking condition has no solution in the steel shadow (RMS 0.5 %) went to a titanium
+/// shadow that solved all 16 at 22 % when the solved count came first (concealed family a, 138).
 fn shadow_cost(s: &crate::shadow::ShadowSummary, tests: usize) -> f64 {
     s.rms_pct + 100.0 * s.unsolved.len() as f64 / tests.max(1) as f64
 }
 
 /// The shadow of the class that matches `external` best *after* the shadow fit: every class whose
 /// nominal set solves at least half the tests ([`rank`]) is built and fitted (`nominal_jc` replaces
-/// the class's own JC set when given), and the one of least [`shadow_cost`] (fitted RMS plus the
-/// share of tests left unsolved) is kept. The pre-fit ranking alone can mislead: a class whose nominal set
-/// is closest at one common force level can be the one whose fit fails once the level is moved
-/// into its JC set (a steel's thermal data under an aluminium's flow stress leave Oxley's sticking
+/// the class's own JC set when given), and the one of least `shadow_cost` (fitted RMS plus the
+/// share of tests left unsolved) is kept. The pre-fit ranking alone can mislead: a class whose
+/// nominal set is closest at one common force level can be the one whose fit fails once the level
+/// is moved into its JC set (a steel's thermal data under an aluminium's flow stress leave Oxley's sticking
 /// condition without a solution; the material-spread check of `docs/concealed.md`).
 ///
 /// # Errors

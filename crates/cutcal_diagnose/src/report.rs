@@ -247,9 +247,9 @@ pub struct Report {
     /// shadow was built.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shadow_friction_factor: Option<f64>,
-    /// Mode A: the fitted shadow's own cutting-edge radius, um (0 = sharp, kept unless a radius
-    /// halves the misfit: the simulation carries ploughing forces); absent in Mode B and when no
-    /// shadow was built.
+    /// Mode A: the fitted shadow's own cutting-edge radius, um (0 = sharp; kept only where a
+    /// radius halves the misfit and brings the shadow within 6 %: the simulation carries ploughing
+    /// forces); absent in Mode B and when no shadow was built.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shadow_edge_radius_um: Option<f64>,
 }

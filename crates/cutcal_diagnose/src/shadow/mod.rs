@@ -7,8 +7,7 @@
 //! and a tool-chip interface factor m_f, tau_int = m_f k_chip, where it halves the misfit: an FE
 //! run's contact law is rarely Oxley's full sticking; then, by the same gate, an edge radius of its
 //! own, where the simulation carries ploughing forces: an FE run with the tool's real edge), on the
-//! given material's thermal properties
-//! or a generic class's. The shadow's response to each
+//! given material's thermal properties or a generic class's. The shadow's response to each
 //! mechanism hook and to each nuisance knob, computed at every test's own conditions, is then the
 //! signature laid on top of the external numbers:
 //!
@@ -43,7 +42,8 @@ pub struct ShadowSummary {
     /// The shadow's tool-chip interface factor m_f (1 = Oxley's full sticking; fitted only where it
     /// halves the misfit).
     pub friction_factor: f64,
-    /// The shadow's own edge radius, m (0 = sharp; fitted only where it halves the misfit).
+    /// The shadow's own edge radius, m (0 = sharp; fitted only where it halves the misfit and
+    /// brings the shadow within [`SHADOW_CAUTION_RMS_PCT`]).
     pub edge_radius_m: f64,
     /// RMS of `ln(y_shadow / y_external)` over all outputs, %, after the fit.
     pub rms_pct: f64,
