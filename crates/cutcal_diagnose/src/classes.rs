@@ -261,6 +261,7 @@ mod tests {
             jc: material.material().1,
             friction_factor: 1.0,
             edge_radius_m: 0.0,
+            c0_scale: 1.0,
             rms_pct,
             unsolved: (0..unsolved).map(|i| (format!("{i}"), "no solution".to_string())).collect(),
             converged: true,

@@ -466,5 +466,6 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         shadow_rms_pct: None,
         shadow_friction_factor: None,
         shadow_edge_radius_um: None,
+        shadow_c0_scale: None,
     })
 }

@@ -30,6 +30,10 @@ pub struct Hooks {
     pub edge_radius_m: f64,
     /// Flank wear land VB, m, of the Smithey et al. 2001 wear-land forces (0 = fresh tool; M3).
     pub wear_land_m: f64,
+    /// Scale on Oxley's strain-rate constant C0 (`cutcal_model::oxley::Physics::c0_scale`; 1 =
+    /// Oxley). Not a mechanism hook: the Mode A shadow's own global, with which it emulates an
+    /// external simulation whose primary zone is not Oxley's (`crate::shadow`).
+    pub c0_scale: f64,
 }
 
 impl Hooks {
@@ -44,6 +48,7 @@ impl Hooks {
         flow_multiplier: 1.0,
         edge_radius_m: 0.0,
         wear_land_m: 0.0,
+        c0_scale: 1.0,
     };
 }
 

@@ -252,6 +252,11 @@ pub struct Report {
     /// forces); absent in Mode B and when no shadow was built.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shadow_edge_radius_um: Option<f64>,
+    /// Mode A: the fitted shadow's scale on Oxley's strain-rate constant C0 (1 = Oxley's
+    /// normal-stress condition, kept unless a scale halves the misfit: the simulation's primary
+    /// zone is not Oxley's); absent in Mode B and when no shadow was built.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shadow_c0_scale: Option<f64>,
 }
 
 impl Report {

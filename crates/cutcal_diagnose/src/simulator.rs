@@ -300,6 +300,7 @@ pub fn oxley_with_hooks_from(
         } else {
             None
         },
+        c0_scale: h.c0_scale.clamp(0.01, 10.0),
         ..Physics::baseline()
     };
     let p = oxley::predict_from(material, &jc, &cond, options, &physics, start).map_err(err)?;

@@ -91,17 +91,7 @@ pub(crate) fn mode_a(
                 sm.jc.n,
                 sm.jc.c,
                 sm.jc.m,
-                match (sm.friction_factor < 1.0, sm.edge_radius_m > 0.0) {
-                    (false, false) => String::new(),
-                    (true, false) => format!(", tool-chip interface factor m_f {:.2} (tau_int = m_f k_chip)", sm.friction_factor),
-                    (false, true) => format!(", edge radius {:.1} um (ploughing in the simulation)", sm.edge_radius_m * 1e6),
-                    (true, true) => format!(
-                        ", tool-chip interface factor m_f {:.2} (tau_int = m_f k_chip) and edge radius {:.1} um (ploughing \
-                         in the simulation)",
-                        sm.friction_factor,
-                        sm.edge_radius_m * 1e6
-                    ),
-                },
+                shadow_extras(sm),
                 sm.rms_pct,
                 if sm.converged { "" } else { "; the shadow fit stopped at its iteration cap" },
                 if sm.fit_discarded {
@@ -142,6 +132,7 @@ pub(crate) fn mode_a(
             report.shadow_rms_pct = Some(sm.rms_pct);
             report.shadow_friction_factor = Some(sm.friction_factor);
             report.shadow_edge_radius_um = Some(sm.edge_radius_m * 1e6);
+            report.shadow_c0_scale = Some(sm.c0_scale);
             Ok(report)
         }
         Err(e) => {
@@ -162,4 +153,29 @@ fn external_only(
     cfg.simulator_notes.push(why);
     let sim = FixedSimulation::new(entries, conditions >= 3)?;
     Ok(diagnose(&sim, measured, &cfg)?)
+}
+
+/// The shadow's gated globals for its note, each where it was kept: the interface factor, the edge
+/// radius and the C0 scale (`cutcal_diagnose::shadow`).
+fn shadow_extras(sm: &cutcal_diagnose::shadow::ShadowSummary) -> String {
+    let mut parts = Vec::new();
+    if sm.friction_factor < 1.0 {
+        parts.push(format!("tool-chip interface factor m_f {:.2} (tau_int = m_f k_chip)", sm.friction_factor));
+    }
+    if sm.edge_radius_m > 0.0 {
+        parts.push(format!("edge radius {:.1} um (ploughing in the simulation)", sm.edge_radius_m * 1e6));
+    }
+    if (sm.c0_scale - 1.0).abs() > 1e-12 {
+        parts.push(format!(
+            "Oxley's strain-rate constant C0 scaled by {:.2} (a primary zone {:.2} times as thick as Oxley's closure \
+             puts it)",
+            sm.c0_scale,
+            1.0 / sm.c0_scale
+        ));
+    }
+    match parts.len() {
+        0 => String::new(),
+        1 => format!(", {}", parts[0]),
+        n => format!(", {} and {}", parts[..n - 1].join(", "), parts[n - 1]),
+    }
 }

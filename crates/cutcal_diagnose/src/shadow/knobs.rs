@@ -88,6 +88,9 @@ pub(super) struct Shadow<'a> {
     /// simulation carries ploughing forces, e.g. an FE run with the real edge): the edge mechanism's
     /// radius adds to it.
     pub(super) edge_m: f64,
+    /// The shadow's scale on Oxley's strain-rate constant C0 (1 = Oxley's normal-stress condition;
+    /// fitted behind a gate where the external simulation's primary zone is not Oxley's).
+    pub(super) c0_scale: f64,
 }
 
 impl Shadow<'_> {
@@ -99,7 +102,12 @@ impl Shadow<'_> {
         knob: Option<(Knob, f64)>,
         start: Option<&OxleyPrediction>,
     ) -> Result<([f64; 5], OxleyPrediction), DiagnoseError> {
-        let mut h = Hooks { friction_factor: self.friction, edge_radius_m: self.edge_m, ..Hooks::NEUTRAL };
+        let mut h = Hooks {
+            friction_factor: self.friction,
+            edge_radius_m: self.edge_m,
+            c0_scale: self.c0_scale,
+            ..Hooks::NEUTRAL
+        };
         let mut options = OxleyOptions::wide();
         let mut scaled: Material;
         let mut material = self.material;

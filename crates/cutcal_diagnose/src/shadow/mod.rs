@@ -4,10 +4,12 @@
 //! often no cutcal material file. cutcal fits its own extended Oxley model (Oxley 1989; Lalwani,
 //! Mehta & Jain 2009; `cutcal_model::oxley`) to the external numbers with a few global parameters
 //! (a flow-stress level, the JC hardening exponent n and the rate and thermal sensitivities C and m;
-//! and a tool-chip interface factor m_f, tau_int = m_f k_chip, where it halves the misfit: an FE
-//! run's contact law is rarely Oxley's full sticking; then, by the same gate, an edge radius of its
-//! own, where the simulation carries ploughing forces: an FE run with the tool's real edge), on the
-//! given material's thermal properties or a generic class's. The shadow's response to each
+//! then, each only where it halves the misfit left: a scale on Oxley's strain-rate constant C0,
+//! where the simulation's primary zone is not Oxley's (another code's closure, an FE run's zone set
+//! by its mesh); a tool-chip interface factor m_f, tau_int = m_f k_chip: an FE run's contact law is
+//! rarely Oxley's full sticking; an edge radius of its own, where the simulation carries ploughing
+//! forces: an FE run with the tool's real edge), on the given material's thermal properties or a
+//! generic class's. The shadow's response to each
 //! mechanism hook and to each nuisance knob, computed at every test's own conditions, is then the
 //! signature laid on top of the external numbers:
 //!
@@ -29,7 +31,7 @@ use crate::error::DiagnoseError;
 use crate::hooks::{Hook, Hooks};
 use crate::simulator::{ParamSpec, Prediction, Simulator};
 use crate::spline::Table;
-use globals::ShadowFit;
+use globals::{Gated, ShadowFit};
 use knobs::{tables_at, Shadow};
 
 /// What the shadow fit found (for the report).
@@ -45,6 +47,9 @@ pub struct ShadowSummary {
     /// The shadow's own edge radius, m (0 = sharp; fitted only where it halves the misfit and
     /// brings the shadow within [`SHADOW_CAUTION_RMS_PCT`]).
     pub edge_radius_m: f64,
+    /// The shadow's scale on Oxley's strain-rate constant C0 (1 = Oxley's normal-stress condition;
+    /// fitted only where it halves the misfit).
+    pub c0_scale: f64,
     /// RMS of `ln(y_shadow / y_external)` over all outputs, %, after the fit.
     pub rms_pct: f64,
     /// Tests whose shadow had no solution (no signature; Mode A leaves them out), with the reason.
@@ -106,7 +111,7 @@ impl ShadowSimulation {
             return Err(DiagnoseError::Inconsistent("the shadow needs one external prediction per test".into()));
         }
         // Solvable tests at the nominal set; the fit runs on those.
-        let sh0 = Shadow { material, jc: nominal, friction: 1.0, edge_m: 0.0 };
+        let sh0 = Shadow { material, jc: nominal, friction: 1.0, edge_m: 0.0, c0_scale: 1.0 };
         let first: Vec<Result<([f64; 5], OxleyPrediction), DiagnoseError>> =
             tests.par_iter().map(|t| sh0.eval_from(t, None, None)).collect();
         let ok: Vec<usize> = (0..tests.len()).filter(|&i| first[i].is_ok()).collect();
@@ -129,44 +134,45 @@ impl ShadowSimulation {
         let level0 = ratios[ratios.len() / 2].clamp(-2.0, 2.0);
         let starts: Vec<OxleyPrediction> =
             ok.iter().filter_map(|&i| first[i].as_ref().ok().map(|(_, sol)| *sol)).collect();
-        let mut problem = ShadowFit {
-            material,
-            nominal,
-            tests: &fit_tests,
-            external: &fit_ext,
-            starts,
-            with_friction: false,
-            with_edge: false,
-        };
+        let mut problem =
+            ShadowFit { material, nominal, tests: &fit_tests, external: &fit_ext, starts, gated: Vec::new() };
         let start = vec![level0, nominal.n.clamp(0.05, 0.8), nominal.c.clamp(1e-4, 0.2), nominal.m.clamp(0.3, 2.5)];
         let (x, converged) = problem.run(start)?;
-        // The interface factor as a fifth global, kept only when it halves the misfit (see
-        // `FRICTION_GATE`).
-        let (x, converged) = problem.try_global(x, converged, |p, on| p.with_friction = on, 1.0, f64::INFINITY)?;
-        // The edge radius as a further global, behind the same gate: an external simulation with a
-        // rounded edge (an FE run with the tool's real edge) carries ploughing forces that no
-        // flow-stress global reproduces (Waldorf, DeVor & Kapoor 1998, as the edge mechanism). It is
-        // kept only where it also brings the shadow within the level at which its signatures are
-        // trusted: an edge that leaves more has not explained the simulation's departure (another
-        // closure's, e.g. a minimum-energy shear angle), it has only absorbed part of it.
-        let (x, converged) =
-            problem.try_global(x, converged, |p, on| p.with_edge = on, 10.0, SHADOW_CAUTION_RMS_PCT)?;
+        // The gated globals, by forward selection (`ShadowFit::select_gated`): each only where it
+        // halves the misfit left, the best first.
+        // - The scale on Oxley's C0: another code's primary zone (a minimum-energy or
+        //   fixed-thickness zone, an FE run's zone set by its mesh) gives another resultant
+        //   direction and chip at every test, which no JC global reproduces.
+        // - The interface factor: an FE run's contact law is rarely Oxley's full sticking.
+        // - The edge radius: an external simulation with a rounded edge (an FE run with the tool's
+        //   real edge) carries ploughing forces that no flow-stress global reproduces (Waldorf,
+        //   DeVor & Kapoor 1998, as the edge mechanism). It is kept only where it also brings the
+        //   shadow within the level at which its signatures are trusted: an edge that leaves more
+        //   has not explained the simulation's departure (another closure's, e.g. a minimum-energy
+        //   shear angle), it has only absorbed part of it.
+        let (x, converged) = problem.select_gated(
+            x,
+            converged,
+            &[(Gated::C0Scale, f64::INFINITY), (Gated::Friction, f64::INFINITY), (Gated::Edge, SHADOW_CAUTION_RMS_PCT)],
+        )?;
         // The fitted set, unless it leaves more tests without a solution than the nominal set did
         // (then the nominal set at the start level stands, and the report says so).
         let mut jc = problem.jc(&x);
         let mut friction = problem.friction(&x);
         let mut edge_m = problem.edge(&x);
-        let mut built = tables_at(&Shadow { material, jc, friction, edge_m }, tests);
+        let mut c0_scale = problem.c0_scale(&x);
+        let mut built = tables_at(&problem.shadow(&x), tests);
         let failed = |b: &[Result<Vec<Table>, DiagnoseError>]| b.iter().filter(|r| r.is_err()).count();
         let mut fit_discarded = false;
         if failed(&built) > tests.len() - ok.len() {
             let fallback = problem.jc(&[level0, nominal.n, nominal.c, nominal.m]);
-            let other = tables_at(&Shadow { material, jc: fallback, friction: 1.0, edge_m: 0.0 }, tests);
+            let other = tables_at(&Shadow { material, jc: fallback, friction: 1.0, edge_m: 0.0, c0_scale: 1.0 }, tests);
             if failed(&other) < failed(&built) {
                 built = other;
                 jc = fallback;
                 friction = 1.0;
                 edge_m = 0.0;
+                c0_scale = 1.0;
                 fit_discarded = true;
             }
         }
@@ -204,6 +210,7 @@ impl ShadowSimulation {
                 jc,
                 friction_factor: friction,
                 edge_radius_m: edge_m,
+                c0_scale,
                 rms_pct,
                 unsolved,
                 converged,
@@ -302,6 +309,7 @@ mod tests {
             jc: crate::classes::MaterialClass::Steel.material().1,
             friction_factor: 1.0,
             edge_radius_m: 0.0,
+            c0_scale: 1.0,
             rms_pct,
             unsolved: Vec::new(),
             converged: true,
@@ -358,9 +366,26 @@ mod tests {
         let sm = sim.summary();
         assert!((sm.edge_radius_m * 1e6 - 20.0).abs() < 2.0, "r_e {} um", sm.edge_radius_m * 1e6);
         assert!(sm.rms_pct < 1.0, "RMS {}", sm.rms_pct);
+        // The edge is chosen over the other gated globals, which are then not needed.
+        assert_eq!((sm.c0_scale, sm.friction_factor), (1.0, 1.0));
         // A sharp simulation keeps a sharp shadow.
         let (m, jc, tests, ext) = steel_case(1.0);
         assert_eq!(ShadowSimulation::build(&m, jc, &tests, &ext, true).unwrap().summary().edge_radius_m, 0.0);
+    }
+
+    #[test]
+    fn another_codes_primary_zone_is_taken_up_by_the_c0_scale() {
+        // A simulation whose primary zone is 1/0.3 times as thick as Oxley's closure puts it (C0
+        // scaled by 0.3) at a 10 % level: the JC globals leave its chip and force ratio; the C0
+        // scale halves the misfit, is kept and comes back near 0.3.
+        let (m, jc, tests, ext) = steel_case_with(Hooks { c0_scale: 0.3, ..Hooks::NEUTRAL }, 1.1);
+        let sim = ShadowSimulation::build(&m, jc, &tests, &ext, true).unwrap();
+        let sm = sim.summary();
+        assert!((sm.c0_scale - 0.3).abs() < 0.05, "C0 scale {}", sm.c0_scale);
+        assert!(sm.rms_pct < 1.0, "RMS {}", sm.rms_pct);
+        // Oxley's own closure keeps the scale at 1.
+        let (m, jc, tests, ext) = steel_case(1.0);
+        assert_eq!(ShadowSimulation::build(&m, jc, &tests, &ext, true).unwrap().summary().c0_scale, 1.0);
     }
 
     #[test]

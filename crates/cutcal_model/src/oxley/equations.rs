@@ -262,7 +262,8 @@ impl Context<'_> {
         let b_en = self.jc.b_pa * strain.powf(self.jc.n);
         let hard = self.jc.a_pa + b_en;
         let n_eq = if strain > 0.0 && hard > 0.0 { self.jc.n * b_en / hard } else { 0.0 };
-        let c0 = self.c0_for_phi(phi_rad, n_eq, sin_pa, cos_pa)?;
+        // C0 of the normal-stress condition, times the emulation scale (`Physics::c0_scale`, 1 = Oxley).
+        let c0 = self.c0_for_phi(phi_rad, n_eq, sin_pa, cos_pa)? * self.physics.c0_scale;
         // Shear-plane length l_AB = t1 / sin(phi) (Lalwani et al. 2009, Sec. 2).
         let l_ab = t1 / sin_phi;
         // Shear velocity V_s = V cos(alpha)/cos(phi - alpha); chip velocity V_c = V sin(phi)/cos(phi - alpha)
@@ -370,7 +371,10 @@ impl Context<'_> {
             normal_force_n_per_m: nr,
             chip_thickness_m: t2,
             contact_length_m: h,
-            model_normal_stress_pa: sigma_n_prime,
+            // With an emulation scale on C0 the normal-stress condition is replaced by
+            // C0 = s_C0 C0_Oxley(phi), met by construction: sigma_N' is then reported as the
+            // force system's sigma_N, so that the condition's residual is zero.
+            model_normal_stress_pa: if (self.physics.c0_scale - 1.0).abs() < 1e-12 { sigma_n_prime } else { nr / h },
             chip,
         })
     }

@@ -249,6 +249,15 @@ pub struct Physics {
     pub thermal_softening_scale: f64,
     /// Flank-wear land forces (M3; Smithey, Kapoor & DeVor 2001), scaled by k_AB, or `None`.
     pub flank_wear: Option<FlankWear>,
+    /// Scale on the strain-rate constant C0 that Oxley's normal-stress condition gives at each phi
+    /// (`sigma_N = sigma_N'`, Oxley 1989 Sec. 4.2): C0 = l_AB / (primary-zone thickness), so a
+    /// scale s makes the primary zone 1/s times as thick as Oxley's closure puts it, and the
+    /// normal-stress condition is then no longer met. 1 = Oxley. Not a mechanism: it lets cutcal's
+    /// model emulate another code's primary zone (a fixed-thickness zone, or an FE run's zone set by
+    /// its mesh), whose resultant direction `tan(theta) = 1 + 2 (pi/4 - phi) - C0 n_eq` differs.
+    /// Within [0.01, 10].
+    #[serde(default = "one")]
+    pub c0_scale: f64,
 }
 
 /// Serde default of a neutral multiplier.
@@ -268,6 +277,7 @@ impl Physics {
             interface_heat_share: 1.0,
             thermal_softening_scale: 1.0,
             flank_wear: None,
+            c0_scale: 1.0,
         }
     }
 
@@ -301,6 +311,10 @@ impl Physics {
         check_range("interface_friction_factor", self.interface_friction_factor, 0.0, 1.0, "0 < m_f <= 1")?;
         check_range("heat_partition_scale", self.heat_partition_scale, 0.0, 3.0, "0 < kappa_beta <= 3")?;
         check_range("interface_heat_share", self.interface_heat_share, 0.0, 2.0, "0 < s <= 2")?;
+        let c = self.c0_scale;
+        if !(c.is_finite() && (0.01..=10.0).contains(&c)) {
+            return Err(ModelError::out_of_range("c0_scale", c, "0.01 <= s_C0 <= 10"));
+        }
         let s = self.thermal_softening_scale;
         if !(s.is_finite() && (0.0..=3.0).contains(&s)) {
             return Err(ModelError::out_of_range("thermal_softening_scale", s, "0 <= kappa_T <= 3"));

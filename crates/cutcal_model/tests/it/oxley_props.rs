@@ -74,3 +74,40 @@ proptest! {
         prop_assert!(a.temperature_int_c < full.temperature_int_c, "{} !< {}", a.temperature_int_c, full.temperature_int_c);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+
+    // A scale s on C0 (`Physics::c0_scale`, the Mode A shadow's emulation of another code's primary
+    // zone) replaces Oxley's normal-stress condition by C0 = s C0_Oxley(phi). Checked from the
+    // reported outputs only: C0 / s is a root of the condition's closed-form quadratic in
+    // u = C0 n_eq (Oxley 1989 Sec. 4.2; derivation in docs/oxley.md)
+    // 3 (A - u sin psi)^2 + (2u - K)(3 T0 - 2u) = 0, T0 = 1 + 2 (pi/4 - phi), psi = phi - a,
+    // A = cos psi + T0 sin psi, K = 1 + pi/2 - 2a; the scaled C0 sets the resultant's direction
+    // tan(theta) = T0 - C0 n_eq and the strain rate C0 V_s / (sqrt(3) l_AB); and the shear
+    // equilibrium F_s = k_AB l_AB and F/h = k_chip still hold. Every case solves for s in
+    // [0.02, 1] (a thicker zone than Oxley's); a thinner one (s > 1) can leave no admissible state.
+    #[test]
+    fn a_c0_scale_replaces_the_normal_stress_condition(v in 100.0..400.0f64, t1 in 0.08..0.3f64, rake in -5.0..10.0f64, s in 0.02..1.0f64) {
+        let cond = CuttingConditions::new(v / 60.0, t1 * 1e-3, 1e-3, rake.to_radians(), 25.0).unwrap();
+        let physics = Physics { c0_scale: s, ..Physics::baseline() };
+        let p = oxley::predict(&aisi1045(), &jc_aisi1045(), &cond, &OxleyOptions::wide(), &physics).unwrap();
+        let a = rake.to_radians();
+        let phi = p.phi_rad;
+        let (t0, psi) = (1.0 + 2.0 * (std::f64::consts::FRAC_PI_4 - phi), phi - a);
+        let big_a = psi.cos() + t0 * psi.sin();
+        let k = 1.0 + FRAC_PI_2 - 2.0 * a;
+        let u = p.c0 / s * p.n_eq;
+        let quad = 3.0 * (big_a - u * psi.sin()).powi(2) + (2.0 * u - k) * (3.0 * t0 - 2.0 * u);
+        prop_assert!(quad.abs() < 1e-9, "quadratic residual {quad} at C0/s = {}", p.c0 / s);
+        prop_assert!((p.theta_rad.tan() - (t0 - p.c0 * p.n_eq)).abs() < 1e-9);
+        let v_s = v / 60.0 * a.cos() / (phi - a).cos();
+        let rate = p.c0 * v_s / (3f64.sqrt() * p.shear_plane_length_m);
+        prop_assert!((p.strain_rate_ab_per_s / rate - 1.0).abs() < 1e-9);
+        let (fc, ft) = (p.cutting_force_n_per_m, p.feed_force_n_per_m);
+        let k_ab = p.shear_flow_stress_ab_pa;
+        prop_assert!(((fc * phi.cos() - ft * phi.sin()) / (k_ab * p.shear_plane_length_m) - 1.0).abs() < 1e-9);
+        let f = fc * a.sin() + ft * a.cos();
+        prop_assert!((f / p.contact_length_m - p.shear_flow_stress_int_pa).abs() / k_ab < 1e-6);
+    }
+}
