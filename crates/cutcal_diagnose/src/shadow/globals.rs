@@ -177,10 +177,12 @@ const EDGE_RADIUS_MAX_UM: f64 = 60.0;
 /// c, whose primary zone has a fixed C0 = 6) scales fell to the bound at 0.25 and still at 0.1: the
 /// emulated closure wants the hardening term C0 n_eq of the resultant's direction nearly gone.
 const C0_SCALE_MAX: f64 = 10.0;
+/// Lower bound of the shadow's C0 scale (see [`C0_SCALE_MAX`]).
 const C0_SCALE_MIN: f64 = 0.02;
-/// The shadow tries m_f only when the four globals leave more than this misfit (RMS, %).
+/// The shadow tries its gated globals only while the fit leaves more than this misfit (RMS, %).
 pub(super) const FRICTION_TRY_RMS_PCT: f64 = 3.0;
-/// m_f is kept only when it brings the misfit below this fraction of the four-global fit's: an
+/// A gated global qualifies only when it brings the misfit below this fraction of what the fit
+/// left before it (set for m_f in the thirteenth session and kept for the others): an
 /// external contact unlike Oxley's sticking (an FE run's Coulomb or shear-factor law) then explains
 /// most of it, while a modest gain means m_f only compensates for another difference.
 pub(super) const FRICTION_GATE: f64 = 0.5;
