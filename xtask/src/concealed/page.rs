@@ -23,7 +23,9 @@ Family `d` (family a's Oxley closure with every mechanism in a third form, neith
 detector's) was generated blind the same way; its first diagnosis came after its forms were
 committed (`--family a,b,c,d`; `all` stays a, b, c). That first run (51 % named at ENR >= 2) led to
 the fourteenth session's size-effect change, so family d is no longer blind for it; its seed 7 was
-a draw never diagnosed before.**
+a draw never diagnosed before. Family c is not blind for the sixteenth session's 6 % condition on
+the shadow's edge nor for the seventeenth session's C0 scale of the shadow (its misfit prompted the
+scale and chose the order of the gated globals).**
 
 ## Generator forward models
 

@@ -61,9 +61,11 @@ pub struct ShadowSummary {
     pub fit_discarded: bool,
 }
 
-/// Shadow RMS (%) above which the report cautions that the signatures are approximate: on the
-/// concealed benchmark (`docs/concealed.md`, twelfth session) naming at ENR >= 2 is about 85 % where
-/// the shadow reproduces the simulation within 3 % and about 65 % beyond 6 %.
+/// Shadow RMS (%) above which the report cautions that the signatures are approximate. On the
+/// concealed benchmark (`docs/concealed.md`) naming at ENR >= 2 was about 85 % where the shadow
+/// reproduced family a's simulations within 3 % and about 65 % beyond 6 % (twelfth session). With
+/// the seventeenth session's gated globals, families b, c and d name 69 % within 3 % and 73 %
+/// beyond 6 %: the caution states the approximation, not a measured loss.
 pub const SHADOW_CAUTION_RMS_PCT: f64 = 6.0;
 
 impl ShadowSummary {
@@ -72,9 +74,9 @@ impl ShadowSummary {
     pub fn fidelity_note(&self) -> Option<String> {
         (self.rms_pct > SHADOW_CAUTION_RMS_PCT).then(|| {
             format!(
-                "the shadow reproduces the external simulation only to {:.1} % (RMS): its per-test signatures are \
-                 approximate, so a named mechanism is less certain (on the concealed benchmark naming falls from \
-                 about 85 % with a shadow within 3 % to about 65 % beyond {SHADOW_CAUTION_RMS_PCT:.0} %)",
+                "the shadow reproduces the external simulation only to {:.1} % (RMS), beyond the \
+                 {SHADOW_CAUTION_RMS_PCT:.0} % within which it is taken as close: its per-test signatures are \
+                 approximate, so a named mechanism is less certain",
                 self.rms_pct
             )
         })
