@@ -28,14 +28,31 @@ pub(super) enum Gated {
     C0Scale,
 }
 
+/// The parameter of a gated global: its name, bounds, off value and start.
+#[derive(Debug, Clone, Copy)]
+struct GatedSpec {
+    name: &'static str,
+    lower: f64,
+    upper: f64,
+    /// The value that leaves the shadow as Oxley's (m_f = 1, sharp, ln s = 0).
+    off: f64,
+    /// The start of its fit (the edge starts inside its range: at its off value, on the bound, the
+    /// fit's first step could not leave it).
+    start: f64,
+}
+
 impl Gated {
-    /// Name, bounds, off value and start of the global's parameter (the edge starts inside its
-    /// range: at its off value, on the bound, the fit's first step could not leave it).
-    fn spec(self) -> (&'static str, f64, f64, f64, f64) {
+    fn spec(self) -> GatedSpec {
         match self {
-            Gated::Friction => ("m_f", FRICTION_FACTOR_MIN, 1.0, 1.0, 1.0),
-            Gated::Edge => ("r_e_um", 0.0, EDGE_RADIUS_MAX_UM, 0.0, 10.0),
-            Gated::C0Scale => ("ln_c0_scale", C0_SCALE_MIN.ln(), C0_SCALE_MAX.ln(), 0.0, 0.0),
+            Gated::Friction => GatedSpec { name: "m_f", lower: FRICTION_FACTOR_MIN, upper: 1.0, off: 1.0, start: 1.0 },
+            Gated::Edge => GatedSpec { name: "r_e_um", lower: 0.0, upper: EDGE_RADIUS_MAX_UM, off: 0.0, start: 10.0 },
+            Gated::C0Scale => GatedSpec {
+                name: "ln_c0_scale",
+                lower: C0_SCALE_MIN.ln(),
+                upper: C0_SCALE_MAX.ln(),
+                off: 0.0,
+                start: 0.0,
+            },
         }
     }
 }
@@ -67,7 +84,7 @@ impl ShadowFit<'_> {
 
     /// The value of gated global `g` at `p` (its off value when it is not switched on).
     fn gated_value(&self, g: Gated, p: &[f64]) -> f64 {
-        self.gated.iter().position(|&h| h == g).map_or(g.spec().3, |k| p[4 + k])
+        self.gated.iter().position(|&h| h == g).map_or(g.spec().off, |k| p[4 + k])
     }
 
     /// The shadow's interface factor m_f.
@@ -113,10 +130,10 @@ impl ShadowFit<'_> {
             vec![2.5, 0.8, 0.2, 2.5],
         );
         for g in &self.gated {
-            let (name, l, h, _, _) = g.spec();
-            names.push(name.to_string());
-            lo.push(l);
-            hi.push(h);
+            let spec = g.spec();
+            names.push(spec.name.to_string());
+            lo.push(spec.lower);
+            hi.push(spec.upper);
         }
         let bounds = Bounds::new(names, lo, hi).map_err(|e| DiagnoseError::Fit(e.to_string()))?;
         let opts =
@@ -149,7 +166,7 @@ impl ShadowFit<'_> {
             for (k, &(g, ceiling)) in remaining.iter().enumerate() {
                 self.gated.push(g);
                 let mut trial = x.clone();
-                trial.push(g.spec().4);
+                trial.push(g.spec().start);
                 let (xt, conv_t) = self.run(trial)?;
                 let after = self.rms_pct(&xt);
                 self.gated.pop();
