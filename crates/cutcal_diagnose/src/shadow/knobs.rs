@@ -93,7 +93,13 @@ pub(super) struct Shadow<'a> {
     pub(super) c0_scale: f64,
 }
 
-impl Shadow<'_> {
+impl<'a> Shadow<'a> {
+    /// The shadow with JC set `jc` and none of its gated globals: Oxley's sticking contact, a sharp
+    /// edge and Oxley's C0.
+    pub(super) fn oxley(material: &'a Material, jc: JcParams) -> Self {
+        Self { material, jc, friction: 1.0, edge_m: 0.0, c0_scale: 1.0 }
+    }
+
     /// The shadow's `ln Fc, ln Ft, ln t2, T_AB, T_int` at test `t` with one knob set, warm-started
     /// at a nearby solution; also returns the solution.
     pub(super) fn eval_from(

@@ -113,7 +113,7 @@ impl ShadowSimulation {
             return Err(DiagnoseError::Inconsistent("the shadow needs one external prediction per test".into()));
         }
         // Solvable tests at the nominal set; the fit runs on those.
-        let sh0 = Shadow { material, jc: nominal, friction: 1.0, edge_m: 0.0, c0_scale: 1.0 };
+        let sh0 = Shadow::oxley(material, nominal);
         let first: Vec<Result<([f64; 5], OxleyPrediction), DiagnoseError>> =
             tests.par_iter().map(|t| sh0.eval_from(t, None, None)).collect();
         let ok: Vec<usize> = (0..tests.len()).filter(|&i| first[i].is_ok()).collect();
@@ -159,22 +159,16 @@ impl ShadowSimulation {
         )?;
         // The fitted set, unless it leaves more tests without a solution than the nominal set did
         // (then the nominal set at the start level stands, and the report says so).
-        let mut jc = problem.jc(&x);
-        let mut friction = problem.friction(&x);
-        let mut edge_m = problem.edge(&x);
-        let mut c0_scale = problem.c0_scale(&x);
-        let mut built = tables_at(&problem.shadow(&x), tests);
+        let mut shadow = problem.shadow(&x);
+        let mut built = tables_at(&shadow, tests);
         let failed = |b: &[Result<Vec<Table>, DiagnoseError>]| b.iter().filter(|r| r.is_err()).count();
         let mut fit_discarded = false;
         if failed(&built) > tests.len() - ok.len() {
-            let fallback = problem.jc(&[level0, nominal.n, nominal.c, nominal.m]);
-            let other = tables_at(&Shadow { material, jc: fallback, friction: 1.0, edge_m: 0.0, c0_scale: 1.0 }, tests);
+            let fallback = Shadow::oxley(material, problem.jc(&[level0, nominal.n, nominal.c, nominal.m]));
+            let other = tables_at(&fallback, tests);
             if failed(&other) < failed(&built) {
                 built = other;
-                jc = fallback;
-                friction = 1.0;
-                edge_m = 0.0;
-                c0_scale = 1.0;
+                shadow = fallback;
                 fit_discarded = true;
             }
         }
@@ -209,10 +203,10 @@ impl ShadowSimulation {
             params,
             summary: ShadowSummary {
                 material: material.name.clone(),
-                jc,
-                friction_factor: friction,
-                edge_radius_m: edge_m,
-                c0_scale,
+                jc: shadow.jc,
+                friction_factor: shadow.friction,
+                edge_radius_m: shadow.edge_m,
+                c0_scale: shadow.c0_scale,
                 rms_pct,
                 unsolved,
                 converged,
