@@ -13,6 +13,7 @@ use cutcal_model::{CuttingTest, JcParams, Material, TempPolynomial, ThermalPrope
 use rayon::prelude::*;
 
 use crate::hooks::Hooks;
+use crate::shadow::FittedShadow;
 use crate::simulator::{oxley_with_hooks, Prediction};
 
 /// A generic material class.
@@ -181,9 +182,10 @@ fn shadow_cost(s: &crate::shadow::ShadowSummary, tests: usize) -> f64 {
 }
 
 /// The shadow of the class that matches `external` best *after* the shadow fit: every class whose
-/// nominal set solves at least half the tests ([`rank`]) is built and fitted (`nominal_jc` replaces
-/// the class's own JC set when given), and the one of least `shadow_cost` (fitted RMS plus the
-/// share of tests left unsolved) is kept. The pre-fit ranking alone can mislead: a class whose
+/// nominal set solves at least half the tests ([`rank`]) is fitted, the classes in parallel
+/// (`nominal_jc` replaces the class's own JC set when given), and the one of least `shadow_cost`
+/// (fitted RMS plus the share of tests left unsolved) is kept and alone tabulated
+/// ([`crate::shadow::ShadowSimulation::tabulate`]). The pre-fit ranking alone can mislead: a class whose
 /// nominal set is closest at one common force level can be the one whose fit fails once the level
 /// is moved into its JC set (a steel's thermal data under an aluminium's flow stress leave Oxley's sticking
 /// condition without a solution; the material-spread check of `docs/concealed.md`).
@@ -197,15 +199,26 @@ pub fn best_shadow(
     nominal_jc: Option<JcParams>,
 ) -> Result<ShadowChoice, crate::DiagnoseError> {
     let ranked = rank(tests, external);
-    let mut built: Vec<(MaterialClass, crate::shadow::ShadowSimulation)> = Vec::new();
-    let mut first_err = None;
-    for c in &ranked {
-        if 2 * c.solved < tests.len() && !built.is_empty() {
-            continue;
-        }
+    let fit = |c: &ClassScore| {
         let (m, class_jc) = c.class.material();
-        match crate::shadow::ShadowSimulation::build(&m, nominal_jc.unwrap_or(class_jc), tests, external, level_free) {
-            Ok(shadow) => built.push((c.class, shadow)),
+        FittedShadow::fit(&m, nominal_jc.unwrap_or(class_jc), tests, external).map(|f| (c.class, f))
+    };
+    // Every class whose nominal set solves at least half the tests is fitted, in parallel (the
+    // ranking puts them first); the others only while no class has been fitted, one at a time.
+    let eligible = ranked.iter().take_while(|c| 2 * c.solved >= tests.len()).count();
+    let mut results: Vec<Result<(MaterialClass, FittedShadow), crate::DiagnoseError>> =
+        ranked[..eligible].par_iter().map(fit).collect();
+    for c in &ranked[eligible..] {
+        if results.iter().any(Result::is_ok) {
+            break;
+        }
+        results.push(fit(c));
+    }
+    let mut first_err = None;
+    let mut built = Vec::new();
+    for r in results {
+        match r {
+            Ok(b) => built.push(b),
             Err(e) => {
                 first_err.get_or_insert(e);
             }
@@ -215,9 +228,11 @@ pub fn best_shadow(
     let n = tests.len();
     built.sort_by(|(_, a), (_, b)| shadow_cost(a.summary(), n).total_cmp(&shadow_cost(b.summary(), n)));
     let fitted = built.iter().map(|(c, s)| (*c, s.summary().unsolved.len(), s.summary().rms_pct)).collect();
-    let Some((class, shadow)) = built.into_iter().next() else {
+    let Some((class, kept)) = built.into_iter().next() else {
         return Err(first_err.unwrap_or_else(|| crate::DiagnoseError::Inconsistent("no material class".into())));
     };
+    // Only the class kept is tabulated.
+    let shadow = crate::shadow::ShadowSimulation::tabulate(kept, tests, external, level_free);
     Ok(ShadowChoice { ranked, class, shadow, fitted })
 }
 

@@ -3,7 +3,7 @@
 //! ln t2`, over a flow-stress level and the JC n, C and m (weak priors), and, behind a gate
 //! (`ShadowFit::select_gated`), a scale on Oxley's strain-rate constant C0
 //! (`cutcal_model::oxley::Physics::c0_scale`), the tool-chip interface factor m_f and the shadow's
-//! own edge radius (Waldorf, DeVor & Kapoor 1998 ploughing) (`ShadowSimulation::build`).
+//! own edge radius (Waldorf, DeVor & Kapoor 1998 ploughing) (`FittedShadow::fit`).
 
 use cutcal_ident::lm::{minimise, Bounds, LmOptions, Problem};
 use cutcal_ident::IdentError;

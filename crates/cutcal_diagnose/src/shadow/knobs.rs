@@ -157,37 +157,44 @@ impl<'a> Shadow<'a> {
     }
 }
 
-/// The shadow's tables at every test: per knob, walked outward from the off node, each node
-/// warm-started at its neighbour.
-pub(super) fn tables_at(sh: &Shadow<'_>, tests: &[CuttingTest]) -> Vec<Result<Vec<Table>, DiagnoseError>> {
+/// The shadow's tables at every test it solves: per knob, walked outward from the off node (the
+/// test's `base`, the shadow at the knobs' off values), each node warm-started at its neighbour.
+pub(super) fn tables_at(
+    sh: &Shadow<'_>,
+    tests: &[CuttingTest],
+    bases: &[Option<([f64; 5], OxleyPrediction)>],
+) -> Vec<Option<Result<Vec<Table>, DiagnoseError>>> {
     tests
         .par_iter()
-        .map(|t| {
-            let (base, base_sol) = sh.eval_from(t, None, None)?;
-            KNOBS
-                .iter()
-                .map(|&k| {
-                    let (nodes, off) = grid(k);
-                    let k0 = nodes.iter().position(|u| (u - off).abs() < 1e-12).unwrap_or(0);
-                    let mut values: Vec<Option<[f64; 5]>> = vec![None; nodes.len()];
-                    values[k0] = Some(base);
-                    for dir in [1i64, -1] {
-                        let mut prev = Some(base_sol);
-                        let mut i = k0 as i64 + dir;
-                        while i >= 0 && (i as usize) < nodes.len() {
-                            match sh.eval_from(t, Some((k, nodes[i as usize])), prev.as_ref()) {
-                                Ok((y, sol)) => {
-                                    values[i as usize] = Some(y);
-                                    prev = Some(sol);
+        .zip(bases)
+        .map(|(t, b)| {
+            let &(base, base_sol) = b.as_ref()?;
+            Some(
+                KNOBS
+                    .iter()
+                    .map(|&k| {
+                        let (nodes, off) = grid(k);
+                        let k0 = nodes.iter().position(|u| (u - off).abs() < 1e-12).unwrap_or(0);
+                        let mut values: Vec<Option<[f64; 5]>> = vec![None; nodes.len()];
+                        values[k0] = Some(base);
+                        for dir in [1i64, -1] {
+                            let mut prev = Some(base_sol);
+                            let mut i = k0 as i64 + dir;
+                            while i >= 0 && (i as usize) < nodes.len() {
+                                match sh.eval_from(t, Some((k, nodes[i as usize])), prev.as_ref()) {
+                                    Ok((y, sol)) => {
+                                        values[i as usize] = Some(y);
+                                        prev = Some(sol);
+                                    }
+                                    Err(_) => break,
                                 }
-                                Err(_) => break,
+                                i += dir;
                             }
-                            i += dir;
                         }
-                    }
-                    Table::new(&nodes, &values, off)
-                })
-                .collect()
+                        Table::new(&nodes, &values, off)
+                    })
+                    .collect(),
+            )
         })
         .collect()
 }

@@ -20,19 +20,18 @@
 //! Carlson 1980). Knob effects combine additively in the logarithm (first order in the
 //! interactions). Nothing is taken from constants measured at one reference condition.
 
+mod fitted;
 mod globals;
 mod knobs;
 
-use cutcal_model::oxley::OxleyPrediction;
 use cutcal_model::{CuttingTest, JcParams, Material};
-use rayon::prelude::*;
 
 use crate::error::DiagnoseError;
 use crate::hooks::{Hook, Hooks};
 use crate::simulator::{ParamSpec, Prediction, Simulator};
 use crate::spline::Table;
-use globals::{Gated, ShadowFit};
-use knobs::{tables_at, Shadow};
+pub use fitted::FittedShadow;
+use knobs::tables_at;
 
 /// What the shadow fit found (for the report).
 #[derive(Debug, Clone, PartialEq)]
@@ -96,7 +95,8 @@ pub struct ShadowSimulation {
 
 impl ShadowSimulation {
     /// Fits the shadow to `external` (one prediction per test of `tests`, same order) on
-    /// `material` from the JC set `nominal`, then tabulates every knob at every test.
+    /// `material` from the JC set `nominal` ([`FittedShadow::fit`]), then tabulates every knob at
+    /// every test ([`ShadowSimulation::tabulate`]).
     ///
     /// `level_free`: whether the diagnosis baseline gets a free flow-stress level (use it with at
     /// least three conditions).
@@ -109,110 +109,30 @@ impl ShadowSimulation {
         external: &[Prediction],
         level_free: bool,
     ) -> Result<Self, DiagnoseError> {
-        if tests.len() != external.len() || tests.is_empty() {
-            return Err(DiagnoseError::Inconsistent("the shadow needs one external prediction per test".into()));
-        }
-        // Solvable tests at the nominal set; the fit runs on those.
-        let sh0 = Shadow::oxley(material, nominal);
-        let first: Vec<Result<([f64; 5], OxleyPrediction), DiagnoseError>> =
-            tests.par_iter().map(|t| sh0.eval_from(t, None, None)).collect();
-        let ok: Vec<usize> = (0..tests.len()).filter(|&i| first[i].is_ok()).collect();
-        if 2 * ok.len() < tests.len() {
-            let why = first.iter().find_map(|r| r.as_ref().err().map(ToString::to_string)).unwrap_or_default();
-            return Err(DiagnoseError::Inconsistent(format!(
-                "the shadow model has no solution at {} of {} tests ({why})",
-                tests.len() - ok.len(),
-                tests.len()
-            )));
-        }
-        let fit_tests: Vec<CuttingTest> = ok.iter().map(|&i| tests[i].clone()).collect();
-        let fit_ext: Vec<Prediction> = ok.iter().map(|&i| external[i]).collect();
-        // Start the level at the median force ratio.
-        let mut ratios: Vec<f64> = ok
-            .iter()
-            .filter_map(|&i| first[i].as_ref().ok().map(|(y, _)| external[i].fc_n_per_m.ln() - y[0]))
-            .collect();
-        ratios.sort_by(f64::total_cmp);
-        let level0 = ratios[ratios.len() / 2].clamp(-2.0, 2.0);
-        let starts: Vec<OxleyPrediction> =
-            ok.iter().filter_map(|&i| first[i].as_ref().ok().map(|(_, sol)| *sol)).collect();
-        let mut problem =
-            ShadowFit { material, nominal, tests: &fit_tests, external: &fit_ext, starts, gated: Vec::new() };
-        let start = vec![level0, nominal.n.clamp(0.05, 0.8), nominal.c.clamp(1e-4, 0.2), nominal.m.clamp(0.3, 2.5)];
-        let (x, converged) = problem.run(start)?;
-        // The gated globals, by forward selection (`ShadowFit::select_gated`): each only where it
-        // halves the misfit left, the best first.
-        // - The scale on Oxley's C0: another code's primary zone (a minimum-energy or
-        //   fixed-thickness zone, an FE run's zone set by its mesh) gives another resultant
-        //   direction and chip at every test, which no JC global reproduces.
-        // - The interface factor: an FE run's contact law is rarely Oxley's full sticking.
-        // - The edge radius: an external simulation with a rounded edge (an FE run with the tool's
-        //   real edge) carries ploughing forces that no flow-stress global reproduces (Waldorf,
-        //   DeVor & Kapoor 1998, as the edge mechanism). It is kept only where it also brings the
-        //   shadow within the level at which its signatures are trusted: an edge that leaves more
-        //   has not explained the simulation's departure (another closure's, e.g. a minimum-energy
-        //   shear angle), it has only absorbed part of it.
-        let (x, converged) = problem.select_gated(
-            x,
-            converged,
-            &[(Gated::C0Scale, f64::INFINITY), (Gated::Friction, f64::INFINITY), (Gated::Edge, SHADOW_CAUTION_RMS_PCT)],
-        )?;
-        // The fitted set, unless it leaves more tests without a solution than the nominal set did
-        // (then the nominal set at the start level stands, and the report says so).
-        let mut shadow = problem.shadow(&x);
-        let mut built = tables_at(&shadow, tests);
-        let failed = |b: &[Result<Vec<Table>, DiagnoseError>]| b.iter().filter(|r| r.is_err()).count();
-        let mut fit_discarded = false;
-        if failed(&built) > tests.len() - ok.len() {
-            let fallback = Shadow::oxley(material, problem.jc(&[level0, nominal.n, nominal.c, nominal.m]));
-            let other = tables_at(&fallback, tests);
-            if failed(&other) < failed(&built) {
-                built = other;
-                shadow = fallback;
-                fit_discarded = true;
-            }
-        }
-        let mut unsolved = Vec::new();
-        let mut sq = (0.0, 0usize);
-        let tables: Vec<Option<Vec<Table>>> = built
+        Ok(Self::tabulate(FittedShadow::fit(material, nominal, tests, external)?, tests, external, level_free))
+    }
+
+    /// Tabulates the fitted shadow's response to every knob at every test it solves (the tests
+    /// and external numbers it was fitted to).
+    #[must_use]
+    pub fn tabulate(fitted: FittedShadow, tests: &[CuttingTest], external: &[Prediction], level_free: bool) -> Self {
+        let mut summary = fitted.summary.clone();
+        // A table fails only without a solved off node, which every solved test has; were one to
+        // fail, its test is listed as unsolved rather than lost.
+        let tables = tables_at(&fitted.shadow(), tests, &fitted.bases)
             .into_iter()
-            .enumerate()
-            .map(|(i, r)| match r {
-                Ok(v) => {
-                    let y = v[4].at(0.0);
-                    let e = &external[i];
-                    for (a, b) in [(e.fc_n_per_m.ln(), y[0]), (e.ft_n_per_m.ln(), y[1]), (e.chip_m.ln(), y[2])] {
-                        sq.0 += (a - b) * (a - b);
-                        sq.1 += 1;
-                    }
-                    Some(v)
-                }
+            .zip(tests)
+            .map(|(r, t)| match r? {
+                Ok(v) => Some(v),
                 Err(e) => {
-                    unsolved.push((tests[i].id.clone(), e.to_string()));
+                    summary.unsolved.push((t.id.clone(), e.to_string()));
                     None
                 }
             })
             .collect();
-        let rms_pct = if sq.1 > 0 { 100.0 * ((sq.0 / sq.1 as f64).sqrt().exp() - 1.0) } else { 0.0 };
         // Nuisance bounded by what its stated uncertainty produces (`crate::nuisance`).
         let params = crate::nuisance::mode_a_params(level_free);
-        Ok(Self {
-            ids: tests.iter().map(|t| t.id.clone()).collect(),
-            external: external.to_vec(),
-            tables,
-            params,
-            summary: ShadowSummary {
-                material: material.name.clone(),
-                jc: shadow.jc,
-                friction_factor: shadow.friction,
-                edge_radius_m: shadow.edge_m,
-                c0_scale: shadow.c0_scale,
-                rms_pct,
-                unsolved,
-                converged,
-                fit_discarded,
-            },
-        })
+        Self { ids: tests.iter().map(|t| t.id.clone()).collect(), external: external.to_vec(), tables, params, summary }
     }
 
     /// What the shadow fit found.
