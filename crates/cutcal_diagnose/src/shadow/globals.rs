@@ -59,6 +59,7 @@ impl Gated {
 
 /// Least squares of the shadow's globals `[ln level, n, C, m]`, then the gated ones kept (in the
 /// order they were added), against the external numbers.
+#[derive(Clone)]
 pub(super) struct ShadowFit<'a> {
     pub(super) material: &'a Material,
     pub(super) nominal: JcParams,
@@ -162,21 +163,28 @@ impl ShadowFit<'_> {
     ) -> Result<(Vec<f64>, bool), DiagnoseError> {
         let mut remaining = candidates.to_vec();
         while let Some(before) = self.rms_pct(&x).filter(|&r| self.tests.len() >= 3 && r > FRICTION_TRY_RMS_PCT) {
-            let mut best: Option<(f64, usize, Vec<f64>, bool)> = None;
-            for (k, &(g, ceiling)) in remaining.iter().enumerate() {
-                self.gated.push(g);
-                let mut trial = x.clone();
-                trial.push(g.spec().start);
-                let (xt, conv_t) = self.run(trial)?;
-                let after = self.rms_pct(&xt);
-                self.gated.pop();
+            // The trials of one round are independent: fitted in parallel, compared in list order.
+            let trials: Vec<(Option<f64>, Vec<f64>, bool)> = remaining
+                .par_iter()
+                .map(|&(g, _)| {
+                    let mut with = self.clone();
+                    with.gated.push(g);
+                    let mut trial = x.clone();
+                    trial.push(g.spec().start);
+                    let (xt, conv_t) = with.run(trial)?;
+                    Ok((with.rms_pct(&xt), xt, conv_t))
+                })
+                .collect::<Result<_, DiagnoseError>>()?;
+            let mut best: Option<(f64, usize)> = None;
+            for (k, (&(_, ceiling), (after, _, _))) in remaining.iter().zip(&trials).enumerate() {
                 if let Some(r) = after.filter(|&r| r < FRICTION_GATE * before && r <= ceiling) {
-                    if best.as_ref().is_none_or(|b| r < b.0) {
-                        best = Some((r, k, xt, conv_t));
+                    if best.is_none_or(|b| r < b.0) {
+                        best = Some((r, k));
                     }
                 }
             }
-            let Some((_, k, xt, conv_t)) = best else { break };
+            let Some((_, k)) = best else { break };
+            let Some((_, xt, conv_t)) = trials.into_iter().nth(k) else { break };
             self.gated.push(remaining.remove(k).0);
             x = xt;
             converged = conv_t;
