@@ -268,6 +268,18 @@ mod tests {
         }
         assert_eq!(choice.class, MaterialClass::Aluminium, "{:?}", choice.ranked);
         assert!(best.rms_pct < 2.0, "{}", best.rms_pct);
+        // The class kept, tabulated after the choice, is the shadow that building that class
+        // directly gives: the same summary and the same signatures under a mechanism's hooks.
+        let (m, class_jc) = MaterialClass::Aluminium.material();
+        let direct = crate::shadow::ShadowSimulation::build(&m, class_jc, &tests, &ext, true).unwrap();
+        assert_eq!(direct.summary(), best);
+        use crate::simulator::Simulator;
+        let theta: Vec<f64> = direct.baseline_params().iter().map(|p| p.start).collect();
+        let hooks = vec![Hooks { friction_factor: 0.8, edge_radius_m: 10e-6, ..Hooks::NEUTRAL }; tests.len()];
+        assert_eq!(
+            direct.simulate(&tests, &theta, &hooks).unwrap(),
+            choice.shadow.simulate(&tests, &theta, &hooks).unwrap()
+        );
     }
 
     fn summary(material: MaterialClass, unsolved: usize, rms_pct: f64) -> crate::shadow::ShadowSummary {
