@@ -23,11 +23,8 @@ pub(super) type Base = ([f64; 5], OxleyPrediction);
 /// ([`ShadowSimulation::tabulate`]).
 #[derive(Debug, Clone)]
 pub struct FittedShadow {
+    /// The shadow's material (its thermal properties); its fitted globals are in `summary`.
     material: Material,
-    jc: JcParams,
-    friction: f64,
-    edge_m: f64,
-    c0_scale: f64,
     /// Per test, the shadow at the fitted set (`None`: no solution; the reason is in `summary`).
     pub(super) bases: Vec<Option<Base>>,
     pub(super) summary: ShadowSummary,
@@ -134,10 +131,6 @@ impl FittedShadow {
         let rms_pct = if sq.1 > 0 { 100.0 * ((sq.0 / sq.1 as f64).sqrt().exp() - 1.0) } else { 0.0 };
         Ok(Self {
             material: material.clone(),
-            jc: shadow.jc,
-            friction: shadow.friction,
-            edge_m: shadow.edge_m,
-            c0_scale: shadow.c0_scale,
             bases,
             summary: ShadowSummary {
                 material: material.name.clone(),
@@ -159,14 +152,15 @@ impl FittedShadow {
         &self.summary
     }
 
-    /// The shadow at the fitted set.
+    /// The shadow at the fitted set (or the nominal fallback the summary reports).
     pub(super) fn shadow(&self) -> Shadow<'_> {
+        let s = &self.summary;
         Shadow {
             material: &self.material,
-            jc: self.jc,
-            friction: self.friction,
-            edge_m: self.edge_m,
-            c0_scale: self.c0_scale,
+            jc: s.jc,
+            friction: s.friction_factor,
+            edge_m: s.edge_radius_m,
+            c0_scale: s.c0_scale,
         }
     }
 }

@@ -6,6 +6,7 @@ use cutcal_model::oxley::{OxleyOptions, OxleyPrediction};
 use cutcal_model::{CuttingTest, JcParams, Material};
 use rayon::prelude::*;
 
+use super::fitted::Base;
 use crate::error::DiagnoseError;
 use crate::hooks::{Hook, Hooks};
 use crate::simulator::oxley_with_hooks_from;
@@ -157,44 +158,40 @@ impl<'a> Shadow<'a> {
     }
 }
 
-/// The shadow's tables at every test it solves: per knob, walked outward from the off node (the
-/// test's `base`, the shadow at the knobs' off values), each node warm-started at its neighbour.
+/// The shadow's tables at every test it solves ([`knob_table`] for each knob).
 pub(super) fn tables_at(
     sh: &Shadow<'_>,
     tests: &[CuttingTest],
-    bases: &[Option<([f64; 5], OxleyPrediction)>],
+    bases: &[Option<Base>],
 ) -> Vec<Option<Result<Vec<Table>, DiagnoseError>>> {
     tests
         .par_iter()
         .zip(bases)
-        .map(|(t, b)| {
-            let &(base, base_sol) = b.as_ref()?;
-            Some(
-                KNOBS
-                    .iter()
-                    .map(|&k| {
-                        let (nodes, off) = grid(k);
-                        let k0 = nodes.iter().position(|u| (u - off).abs() < 1e-12).unwrap_or(0);
-                        let mut values: Vec<Option<[f64; 5]>> = vec![None; nodes.len()];
-                        values[k0] = Some(base);
-                        for dir in [1i64, -1] {
-                            let mut prev = Some(base_sol);
-                            let mut i = k0 as i64 + dir;
-                            while i >= 0 && (i as usize) < nodes.len() {
-                                match sh.eval_from(t, Some((k, nodes[i as usize])), prev.as_ref()) {
-                                    Ok((y, sol)) => {
-                                        values[i as usize] = Some(y);
-                                        prev = Some(sol);
-                                    }
-                                    Err(_) => break,
-                                }
-                                i += dir;
-                            }
-                        }
-                        Table::new(&nodes, &values, off)
-                    })
-                    .collect(),
-            )
-        })
+        .map(|(t, b)| b.as_ref().map(|b| KNOBS.iter().map(|&k| knob_table(sh, t, k, b)).collect()))
         .collect()
+}
+
+/// Knob `k`'s table at test `t`, walked outward from the off node (the test's `base`, the shadow at
+/// the knobs' off values), each node warm-started at its neighbour; the walk stops at the first
+/// node without a solution.
+fn knob_table(sh: &Shadow<'_>, t: &CuttingTest, k: Knob, &(base, base_sol): &Base) -> Result<Table, DiagnoseError> {
+    let (nodes, off) = grid(k);
+    let k0 = nodes.iter().position(|u| (u - off).abs() < 1e-12).unwrap_or(0);
+    let mut values: Vec<Option<[f64; 5]>> = vec![None; nodes.len()];
+    values[k0] = Some(base);
+    for dir in [1i64, -1] {
+        let mut prev = Some(base_sol);
+        let mut i = k0 as i64 + dir;
+        while i >= 0 && (i as usize) < nodes.len() {
+            match sh.eval_from(t, Some((k, nodes[i as usize])), prev.as_ref()) {
+                Ok((y, sol)) => {
+                    values[i as usize] = Some(y);
+                    prev = Some(sol);
+                }
+                Err(_) => break,
+            }
+            i += dir;
+        }
+    }
+    Table::new(&nodes, &values, off)
 }

@@ -116,10 +116,11 @@ impl ShadowSimulation {
     /// and external numbers it was fitted to).
     #[must_use]
     pub fn tabulate(fitted: FittedShadow, tests: &[CuttingTest], external: &[Prediction], level_free: bool) -> Self {
-        let mut summary = fitted.summary.clone();
+        let built = tables_at(&fitted.shadow(), tests, &fitted.bases);
+        let mut summary = fitted.summary;
         // A table fails only without a solved off node, which every solved test has; were one to
         // fail, its test is listed as unsolved rather than lost.
-        let tables = tables_at(&fitted.shadow(), tests, &fitted.bases)
+        let tables = built
             .into_iter()
             .zip(tests)
             .map(|(r, t)| match r? {
