@@ -62,6 +62,13 @@ pub(crate) struct ArtefactFit {
 }
 
 impl ArtefactFit {
+    /// Whether the fitted factor lies inside its bound. A fit that presses against the bound wants a
+    /// gain (or drift) beyond what a calibrated dynamometer can be off by ([`G_BOUND`]): that is a
+    /// physical mismatch, not an instrument explanation, so it may not stop a claim.
+    pub(crate) fn within_bound(&self) -> bool {
+        self.g.abs() < G_BOUND * (1.0 - 1e-3)
+    }
+
     /// AICc of the fit on `n` observations.
     pub(crate) fn aicc(&self, n: usize) -> f64 {
         stats::aicc(self.rss + self.penalty, n, self.k)
@@ -116,13 +123,18 @@ impl LmProblem for ArtefactProblem<'_> {
 }
 
 /// Fits each artefact that this design can show on top of `current` (model `spec`). An artefact
-/// whose fit fails is left out (it can then not stop a claim; the mechanism's own checks stand).
+/// whose fit fails, or whose factor sits on its bound ([`ArtefactFit::within_bound`]), is left out
+/// (it can then not stop a claim; the mechanism's own checks stand).
 pub(crate) fn fit_artefacts(pr: &Problem<'_>, current: &Fit, spec: &Spec) -> Vec<ArtefactFit> {
     let mut kinds = vec![Artefact::Gain];
     if spec.ctx.wear_state.is_some() {
         kinds.push(Artefact::Drift);
     }
-    kinds.into_iter().filter_map(|a| fit_artefact(pr, spec, &current.x, a, 0.0)).collect()
+    kinds
+        .into_iter()
+        .filter_map(|a| fit_artefact(pr, spec, &current.x, a, 0.0))
+        .filter(ArtefactFit::within_bound)
+        .collect()
 }
 
 /// Fits one artefact jointly with model `spec` from the model parameters `x0` and artefact
@@ -178,5 +190,14 @@ mod tests {
         let a = ArtefactFit { artefact: Artefact::Gain, g: 0.1, rss: 20.0, penalty: 0.0, k: 3 };
         assert!((a.aicc(20) - stats::aicc(20.0, 20, 3)).abs() < 1e-12);
         assert!((a.aicc(20) - 7.5).abs() < 1e-9, "{}", a.aicc(20));
+    }
+
+    #[test]
+    fn a_factor_on_its_bound_is_no_instrument_explanation() {
+        // ln 1.2 is the bound: 1.15 and 1/1.15 are inside it, 1.2 and 1/1.2 (a fit pressing
+        // against it) are not.
+        let fit = |factor: f64| ArtefactFit { artefact: Artefact::Gain, g: factor.ln(), rss: 1.0, penalty: 0.0, k: 2 };
+        assert!(fit(1.15).within_bound() && fit(1.0 / 1.15).within_bound());
+        assert!(!fit(1.2).within_bound() && !fit(1.0 / 1.2).within_bound());
     }
 }
