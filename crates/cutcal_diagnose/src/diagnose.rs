@@ -17,7 +17,7 @@ use cutcal_model::CuttingTest;
 use crate::error::DiagnoseError;
 use crate::fit::{observations, Spec, OUTPUTS};
 use crate::heldout::heldout_round;
-use crate::instrument::{fit_artefact, fit_artefacts, Artefact};
+use crate::instrument::{fit_artefact, fit_artefacts, Artefact, ArtefactFit};
 use crate::locate::locate;
 use crate::mechanism::{info, testable, Context, MechanismId};
 use crate::narrative::{explain, next_test, result_of};
@@ -273,11 +273,26 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         let best = eligible.iter().copied().min_by(|&a, &b| cands[a].daicc.total_cmp(&cands[b].daicc));
         let mut chosen = None;
         // Instrument explanations compete with the best mechanism (`crate::instrument`).
+        // An artefact whose factor sits on its bound is no instrument explanation
+        // (`ArtefactFit::within_bound`); the note says so where it would have competed.
         let artefact = best.and_then(|b| {
             let base_aicc = stats::aicc(current.objective(), n, current.k);
-            fit_artefacts(&pr, &current, &current_spec)
+            let (inside, beyond): (Vec<_>, Vec<_>) = fit_artefacts(&pr, &current, &current_spec)
                 .into_iter()
                 .filter(|a| a.aicc(n) - base_aicc - cands[b].daicc < cfg.ambiguity_delta_aicc)
+                .partition(ArtefactFit::within_bound);
+            for a in &beyond {
+                notes.push(format!(
+                    "Instrument check: {} would explain the mismatch about as well as {} only with a factor of \
+                     {:.3}, on its bound; a calibrated dynamometer is not off by that much, so it does not stop \
+                     the claim.",
+                    a.artefact.describe(),
+                    cands[b].id.as_str(),
+                    a.g.exp()
+                ));
+            }
+            inside
+                .into_iter()
                 .min_by(|x, y| x.aicc(n).total_cmp(&y.aicc(n)))
                 .map(|a| (b, a.clone(), a.aicc(n) - base_aicc))
         });

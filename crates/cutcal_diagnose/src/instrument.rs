@@ -123,18 +123,14 @@ impl LmProblem for ArtefactProblem<'_> {
 }
 
 /// Fits each artefact that this design can show on top of `current` (model `spec`). An artefact
-/// whose fit fails, or whose factor sits on its bound ([`ArtefactFit::within_bound`]), is left out
-/// (it can then not stop a claim; the mechanism's own checks stand).
+/// whose fit fails is left out (it can then not stop a claim; the mechanism's own checks stand);
+/// the caller leaves out those whose factor sits on its bound ([`ArtefactFit::within_bound`]).
 pub(crate) fn fit_artefacts(pr: &Problem<'_>, current: &Fit, spec: &Spec) -> Vec<ArtefactFit> {
     let mut kinds = vec![Artefact::Gain];
     if spec.ctx.wear_state.is_some() {
         kinds.push(Artefact::Drift);
     }
-    kinds
-        .into_iter()
-        .filter_map(|a| fit_artefact(pr, spec, &current.x, a, 0.0))
-        .filter(ArtefactFit::within_bound)
-        .collect()
+    kinds.into_iter().filter_map(|a| fit_artefact(pr, spec, &current.x, a, 0.0)).collect()
 }
 
 /// Fits one artefact jointly with model `spec` from the model parameters `x0` and artefact
