@@ -53,6 +53,16 @@ fn a_common_force_gain_is_not_named_physics() {
     assert!(report.selected.is_empty(), "{}", report.to_text());
 }
 
+/// The edge of radius `radius_m` in the external model, read through force channels `gain` times
+/// too high, diagnosed against the sharp external simulation: the names selected and the text.
+fn edge_read_with_gain(radius_m: f64, gain: f64) -> (Vec<String>, String) {
+    let tests = design();
+    let ext = external(&tests, &|_| Hooks::NEUTRAL);
+    let edge = |_: &CuttingTest| Hooks { edge_radius_m: radius_m, ..Hooks::NEUTRAL };
+    let report = run(&measured(&tests, &external(&tests, &edge), &|_| gain), &ext);
+    (report.selected.clone(), report.to_text())
+}
+
 #[test]
 fn an_edge_under_a_gain_error_is_still_named() {
     // An 8 um edge (Waldorf et al. 1998, in the full model) recorded through force channels that
@@ -60,13 +70,9 @@ fn an_edge_under_a_gain_error_is_still_named() {
     // as well as the edge alone, but it leaves the edge force's rise at small h in the residuals:
     // the nested test (edge on top of the gain, against the gain alone) keeps the claim. Before that
     // test, such a case was `unexplained`.
-    let tests = design();
-    let ext = external(&tests, &|_| Hooks::NEUTRAL);
-    let edge = |_: &CuttingTest| Hooks { edge_radius_m: 8e-6, ..Hooks::NEUTRAL };
-    let rec = measured(&tests, &external(&tests, &edge), &|_| 1.12);
-    let report = run(&rec, &ext);
-    assert_eq!(report.selected, vec!["edge_ploughing".to_string()], "{}", report.to_text());
-    assert!(report.to_text().contains("adds significantly on top of it"), "{}", report.to_text());
+    let (selected, text) = edge_read_with_gain(8e-6, 1.12);
+    assert_eq!(selected, vec!["edge_ploughing".to_string()], "{text}");
+    assert!(text.contains("adds significantly on top of it"), "{text}");
 }
 
 #[test]
@@ -74,11 +80,7 @@ fn a_gain_on_its_bound_does_not_stop_a_claim() {
     // A 15 um edge read 20 % high: the gain that would explain it sits on its bound, ln 1.2,
     // beyond what a calibrated dynamometer can be off by, so it is no instrument explanation and
     // the report says so.
-    let tests = design();
-    let ext = external(&tests, &|_| Hooks::NEUTRAL);
-    let edge = |_: &CuttingTest| Hooks { edge_radius_m: 15e-6, ..Hooks::NEUTRAL };
-    let rec = measured(&tests, &external(&tests, &edge), &|_| 1.2);
-    let report = run(&rec, &ext);
-    assert_eq!(report.selected, vec!["edge_ploughing".to_string()], "{}", report.to_text());
-    assert!(report.to_text().contains("on its bound"), "{}", report.to_text());
+    let (selected, text) = edge_read_with_gain(15e-6, 1.2);
+    assert_eq!(selected, vec!["edge_ploughing".to_string()], "{text}");
+    assert!(text.contains("on its bound"), "{text}");
 }
