@@ -281,16 +281,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 .into_iter()
                 .filter(|a| a.aicc(n) - base_aicc - cands[b].daicc < cfg.ambiguity_delta_aicc)
                 .partition(ArtefactFit::within_bound);
-            for a in &beyond {
-                notes.push(format!(
-                    "Instrument check: {} would explain the mismatch about as well as {} only with a factor of \
-                     {:.3}, on its bound; a calibrated dynamometer is not off by that much, so it does not stop \
-                     the claim.",
-                    a.artefact.describe(),
-                    cands[b].id.as_str(),
-                    a.g.exp()
-                ));
-            }
+            notes.extend(beyond.iter().map(|a| a.on_bound_note(cands[b].id.as_str())));
             inside
                 .into_iter()
                 .min_by(|x, y| x.aicc(n).total_cmp(&y.aicc(n)))

@@ -69,6 +69,17 @@ impl ArtefactFit {
         self.g.abs() < G_BOUND * (1.0 - 1e-3)
     }
 
+    /// The report's note for an artefact on its bound that would otherwise have stopped the claim
+    /// of `mechanism`.
+    pub(crate) fn on_bound_note(&self, mechanism: &str) -> String {
+        format!(
+            "Instrument check: {} would explain the mismatch about as well as {mechanism} only with a factor of \
+             {:.3}, on its bound; a calibrated dynamometer is not that far off, so it does not stop the claim.",
+            self.artefact.describe(),
+            self.g.exp()
+        )
+    }
+
     /// AICc of the fit on `n` observations.
     pub(crate) fn aicc(&self, n: usize) -> f64 {
         stats::aicc(self.rss + self.penalty, n, self.k)
