@@ -17,13 +17,13 @@ use cutcal_model::CuttingTest;
 use crate::error::DiagnoseError;
 use crate::fit::{observations, Spec, OUTPUTS};
 use crate::heldout::heldout_round;
-use crate::instrument::{fit_artefact, fit_artefacts, Artefact, ArtefactFit};
+use crate::instrument::stops_claim;
 use crate::locate::locate;
 use crate::mechanism::{info, testable, Context, MechanismId};
 use crate::narrative::{explain, next_test, result_of};
 use crate::problem::{condition_groups, loco_of, rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
-use crate::screen::{boundary_params, cosine, f_test, grid_chosen, screen_and_refit, tested_df};
+use crate::screen::{cosine, screen_and_refit};
 use crate::simulator::Simulator;
 use crate::stats;
 use crate::verdict::decide;
@@ -273,67 +273,11 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         let best = eligible.iter().copied().min_by(|&a, &b| cands[a].daicc.total_cmp(&cands[b].daicc));
         let mut chosen = None;
         // Instrument explanations compete with the best mechanism (`crate::instrument`).
-        // An artefact whose factor sits on its bound is no instrument explanation
-        // (`ArtefactFit::within_bound`); the note says so where it would have competed.
-        let artefact = best.and_then(|b| {
-            let base_aicc = stats::aicc(current.objective(), n, current.k);
-            let (inside, beyond): (Vec<_>, Vec<_>) = fit_artefacts(&pr, &current, &current_spec)
-                .into_iter()
-                .filter(|a| a.aicc(n) - base_aicc - cands[b].daicc < cfg.ambiguity_delta_aicc)
-                .partition(ArtefactFit::within_bound);
-            notes.extend(beyond.iter().map(|a| a.on_bound_note(cands[b].id.as_str())));
-            inside
-                .into_iter()
-                .min_by(|x, y| x.aicc(n).total_cmp(&y.aicc(n)))
-                .map(|a| (b, a.clone(), a.aicc(n) - base_aicc))
+        let stopped = best.is_some_and(|b| {
+            let current_pair = (&current_spec, &current);
+            stops_claim(&pr, current_pair, &mut cands, b, alpha_round, &mut notes)
         });
-        // The artefact stops the claim only when the mechanism adds nothing significant on top of
-        // it: the mechanism refitted jointly with the artefact against the artefact alone, by the
-        // claim's own F-test and level (a nested comparison, as the refit's). A gain held at its
-        // bound while an edge force or a thermal trend is left in the residuals is no explanation.
-        let artefact = artefact.filter(|(b, a, _)| {
-            let c = &cands[*b];
-            let beyond = fit_artefact(&pr, &c.spec, &c.fit.x, a.artefact, a.g).map(|j| {
-                let d = tested_df(c.id, j.k.saturating_sub(a.k));
-                f_test(a.rss, j.rss, d, n, j.k + grid_chosen(c.id), boundary_params(c.id))
-            });
-            match beyond {
-                Some(p) if p.is_finite() && p < alpha_round => {
-                    notes.push(format!(
-                        "Instrument check: {} explains the mismatch about as well as {}, but {} adds significantly \
-                         on top of it (p = {:.2e} < {:.4}), so the artefact does not stop the claim.",
-                        a.artefact.describe(),
-                        c.id.as_str(),
-                        c.id.as_str(),
-                        p,
-                        alpha_round
-                    ));
-                    false
-                }
-                _ => true,
-            }
-        });
-        if let Some((b, a, da)) = &artefact {
-            cands[*b].stopped_by = Some(a.artefact);
-            cands[*b].reason = format!(
-                "{} explains the mismatch at least as well (its dAICc {:+.1} against {:+.1}; fitted factor {:.3}): no claim",
-                a.artefact.describe(),
-                da,
-                cands[*b].daicc,
-                a.g.exp()
-            );
-            notes.push(format!(
-                "Instrument check: {} explains the mismatch at least as well as {} (dAICc {:+.1} against {:+.1}), so no \
-                 physics is claimed; \
-                 check the dynamometer calibration{}.",
-                a.artefact.describe(),
-                cands[*b].id.as_str(),
-                da,
-                cands[*b].daicc,
-                if a.artefact == Artefact::Drift { " and repeat the first test at the end of the series" } else { "" }
-            ));
-        }
-        if let Some(b) = best.filter(|_| artefact.is_none()) {
+        if let Some(b) = best.filter(|_| !stopped) {
             let rivals: Vec<usize> = (0..cands.len())
                 .filter(|&i| {
                     i != b

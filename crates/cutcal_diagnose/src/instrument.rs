@@ -24,7 +24,8 @@ use nalgebra::DVector;
 
 use crate::error::DiagnoseError;
 use crate::fit::{self, layout, Fit, Spec};
-use crate::problem::Problem;
+use crate::problem::{Candidate, Problem};
+use crate::screen::{boundary_params, f_test, grid_chosen, tested_df};
 use crate::stats;
 
 /// An instrument artefact.
@@ -184,6 +185,67 @@ pub(crate) fn fit_artefact(
         penalty,
         k: start.len(),
     })
+}
+
+/// Whether an instrument artefact stops the claim of candidate `best` of `cands` (issue 10,
+/// decoys), on top of the current model `current` (its spec and fit). The artefacts inside their
+/// bound ([`ArtefactFit::within_bound`]) whose AICc comes within the ambiguity margin of the
+/// candidate's compete; one on its bound adds a note instead. The best competitor stops the claim
+/// only when the mechanism adds nothing significant on top of it: the mechanism refitted jointly
+/// with the artefact against the artefact alone, by the claim's own F-test at level `alpha` (a
+/// nested comparison, as the refit's). A gain held at its bound while an edge force or a thermal
+/// trend is left in the residuals is no explanation. When it stops the claim, the candidate's
+/// `stopped_by` and reason are set; every finding goes to `notes`.
+pub(crate) fn stops_claim(
+    pr: &Problem<'_>,
+    current: (&Spec, &Fit),
+    cands: &mut [Candidate],
+    best: usize,
+    alpha: f64,
+    notes: &mut Vec<String>,
+) -> bool {
+    let (spec, fit) = current;
+    let n = pr.n();
+    let base_aicc = stats::aicc(fit.objective(), n, fit.k);
+    let c = &cands[best];
+    let (inside, beyond): (Vec<_>, Vec<_>) = fit_artefacts(pr, fit, spec)
+        .into_iter()
+        .filter(|a| a.aicc(n) - base_aicc - c.daicc < pr.cfg.ambiguity_delta_aicc)
+        .partition(ArtefactFit::within_bound);
+    notes.extend(beyond.iter().map(|a| a.on_bound_note(c.id.as_str())));
+    let Some(a) = inside.into_iter().min_by(|x, y| x.aicc(n).total_cmp(&y.aicc(n))) else {
+        return false;
+    };
+    let da = a.aicc(n) - base_aicc;
+    let beyond = fit_artefact(pr, &c.spec, &c.fit.x, a.artefact, a.g).map(|j| {
+        let d = tested_df(c.id, j.k.saturating_sub(a.k));
+        f_test(a.rss, j.rss, d, n, j.k + grid_chosen(c.id), boundary_params(c.id))
+    });
+    let id = c.id.as_str();
+    if let Some(p) = beyond.filter(|p| p.is_finite() && *p < alpha) {
+        notes.push(format!(
+            "Instrument check: {} explains the mismatch about as well as {id}, but {id} adds significantly on top \
+             of it (p = {p:.2e} < {alpha:.4}), so the artefact does not stop the claim.",
+            a.artefact.describe(),
+        ));
+        return false;
+    }
+    notes.push(format!(
+        "Instrument check: {} explains the mismatch at least as well as {id} (dAICc {da:+.1} against {:+.1}), so \
+         no physics is claimed; check the dynamometer calibration{}.",
+        a.artefact.describe(),
+        c.daicc,
+        if a.artefact == Artefact::Drift { " and repeat the first test at the end of the series" } else { "" }
+    ));
+    let c = &mut cands[best];
+    c.reason = format!(
+        "{} explains the mismatch at least as well (its dAICc {da:+.1} against {:+.1}; fitted factor {:.3}): no claim",
+        a.artefact.describe(),
+        c.daicc,
+        a.g.exp()
+    );
+    c.stopped_by = Some(a.artefact);
+    true
 }
 
 #[cfg(test)]
