@@ -185,6 +185,8 @@ fn one(
         enr: None,
         enr_shape: None,
         enr_beyond_nuisance: None,
+        rival_chi2: None,
+        nearest_rival: None,
         status: "generation_failed".into(),
         reason: String::new(),
         verdict: None,
@@ -206,6 +208,8 @@ fn one(
     o.enr = Some(ds.truth.enr);
     o.enr_shape = Some(ds.truth.enr_shape);
     o.enr_beyond_nuisance = ds.truth.enr_beyond_nuisance;
+    o.rival_chi2 = ds.truth.rival_chi2;
+    o.nearest_rival.clone_from(&ds.truth.nearest_rival);
     let dir = opts.out.join("data").join(family.as_str()).join(format!("{index:03}"));
     let (rec, sim) = (dir.join("recordings.csv"), dir.join("simulation.csv"));
     let written = std::fs::create_dir_all(&dir)
@@ -290,7 +294,7 @@ pub fn run(opts: &ConcealedOptions) -> Result<()> {
         let (outcomes, truths) = pool.install(|| run_family(fam, opts, false));
         std::fs::write(opts.out.join(format!("truth-{f}.json")), serde_json::to_string_pretty(&truths)?)?;
         if opts.generate_only {
-            eprint!("{}", generation_summary(f, &outcomes));
+            eprint!("{}", score::generation_summary(f, &outcomes));
             continue;
         }
         std::fs::write(opts.out.join(format!("outcomes-{f}.json")), serde_json::to_string_pretty(&outcomes)?)?;
@@ -309,46 +313,6 @@ pub fn run(opts: &ConcealedOptions) -> Result<()> {
     }
     println!("{md}");
     Ok(())
-}
-
-/// The generation summary of one family (`--generate-only`): datasets per kind, generation failures
-/// with their reasons, and per mechanism the count at ENR >= 2 and the median ENR and ENR beyond
-/// nuisance.
-fn generation_summary(family: &str, outcomes: &[Outcome]) -> String {
-    let median = |mut v: Vec<f64>| -> String {
-        v.sort_by(f64::total_cmp);
-        match v.len() {
-            0 => "-".into(),
-            n if n % 2 == 1 => format!("{:.2}", v[n / 2]),
-            n => format!("{:.2}", 0.5 * (v[n / 2 - 1] + v[n / 2])),
-        }
-    };
-    let failed: Vec<&Outcome> = outcomes.iter().filter(|o| o.status == "generation_failed").collect();
-    let mut s = format!(
-        "family {family}: {} datasets, {} generated, {} generation failures\n",
-        outcomes.len(),
-        outcomes.len() - failed.len(),
-        failed.len()
-    );
-    for o in &failed {
-        s.push_str(&format!("  failed {:03} {}: {}\n", o.index, o.hidden, o.reason));
-    }
-    s.push_str("  kind                 n  failed  ENR>=2  median ENR  median ENR beyond nuisance\n");
-    let kinds = std::iter::once("null").chain(MECHANISMS).chain(DECOYS);
-    for k in kinds {
-        let of: Vec<&Outcome> = outcomes.iter().filter(|o| o.hidden == k).collect();
-        let ok: Vec<&&Outcome> = of.iter().filter(|o| o.status != "generation_failed").collect();
-        let strong = ok.iter().filter(|o| o.enr.is_some_and(|e| e >= 2.0)).count();
-        s.push_str(&format!(
-            "  {k:<18} {:>3} {:>7} {:>7} {:>11} {:>27}\n",
-            of.len(),
-            of.len() - ok.len(),
-            strong,
-            median(ok.iter().filter_map(|o| o.enr).collect()),
-            median(ok.iter().filter_map(|o| o.enr_beyond_nuisance).collect()),
-        ));
-    }
-    s
 }
 
 #[cfg(test)]
@@ -415,6 +379,14 @@ mod tests {
                         assert!((a[o] / b[o]).ln().abs() < 0.25, "{hidden} output {o}: {} vs {}", a[o], b[o]);
                     }
                 }
+                // A rival column can only lower what the nuisance leaves; the hidden mechanism is
+                // never its own rival.
+                if let (Some(chi2), Some(beyond)) = (t.rival_chi2, t.enr_beyond_nuisance) {
+                    let count = (t.conditions * if t.columns.iter().any(|c| c == "t_int_c") { 4 } else { 3 }) as f64;
+                    assert!(chi2 <= count * beyond * beyond * (1.0 + 1e-9) + 1e-12, "{hidden}: {chi2} vs {beyond}");
+                    assert_ne!(t.nearest_rival.as_deref(), Some(*hidden));
+                }
+                assert_eq!(t.rival_chi2.is_some(), MECHANISMS.contains(hidden), "{hidden}");
                 match *hidden {
                     "null" => {
                         assert!(with

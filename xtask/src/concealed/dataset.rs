@@ -75,6 +75,13 @@ pub struct Truth {
     /// ENR left after the generator's own nuisance constants move within their stated ranges
     /// (`detectable.rs`); `None` when a perturbed solve failed.
     pub enr_beyond_nuisance: Option<f64>,
+    /// The sum of squares (noise units) of the noise-free effect left by the nuisance and the nearest
+    /// rival mechanism in the generator's own form (`detectable::nearest_rival`): about the AICc
+    /// by which the hidden form beats that rival's. Mechanisms only; `None` when no rival could be
+    /// solved.
+    pub rival_chi2: Option<f64>,
+    /// That rival.
+    pub nearest_rival: Option<String>,
     /// The mechanism's shape parameters.
     pub shape: Shape,
     /// Family d's shape parameters (its forms, `forms_d.rs`); absent in families a, b, c.
@@ -270,27 +277,28 @@ pub fn generate(
     tints.sort_by(f64::total_cmp);
     let t_gate = tints[((n - 1) as f64 * shape.bue_quantile).round() as usize];
     let in_model = ["tool_chip_friction", "thermal_softening", "heat_partition", "size_effect", "built_up_edge"];
-    let with_at = |s: f64| -> Result<Vec<[f64; 4]>, String> {
+    // Noise-free recordings with mechanism `id` (the hidden one or a rival) at strength `s`.
+    let effect_at = |id: &str, s: f64| -> Result<Vec<[f64; 4]>, String> {
         let mut out = Vec::with_capacity(n);
         for (i, c) in d.conds.iter().enumerate() {
             if let Some(sd) = &shape_d {
                 let bg = |sol: &Solution| edge(sol, c, r0);
-                out.push(forms_d::truth_row(hidden, s, sd, c, &truth_k, &base[i], wear[i], v_span, &bg)?);
+                out.push(forms_d::truth_row(id, s, sd, c, &truth_k, &base[i], wear[i], v_span, &bg)?);
                 continue;
             }
-            let sol = if in_model.contains(&hidden) {
-                let m = mechanism::mods(family, hidden, s, &shape, c, &base[i], t_gate);
+            let sol = if in_model.contains(&id) {
+                let m = mechanism::mods(family, id, s, &shape, c, &base[i], t_gate);
                 solve(family, c, &truth_k, &m, Some(base[i].phi))?
             } else {
                 base[i]
             };
-            let mut y = edge(&sol, c, if plough { s } else { r0 });
-            if hidden == "flank_wear" {
+            let mut y = edge(&sol, c, if id == "edge_ploughing" { r0 + s } else { r0 });
+            if id == "flank_wear" {
                 let (pc, pt) = mechanism::wear_land(&shape, s * wear[i], sol.k_ab);
                 y[0] += pc;
                 y[1] += pt;
             }
-            if hidden == "force_crosstalk" {
+            if id == "force_crosstalk" {
                 let (fc, ft) = mechanism::channel(s, &shape, y[0], y[1]);
                 if fc <= 0.0 || ft <= 0.0 {
                     return Err("crosstalk made a force negative".into());
@@ -302,6 +310,7 @@ pub fn generate(
         }
         Ok(out)
     };
+    let with_at = |s: f64| effect_at(hidden, s); // a rival edge adds to r0 (0 when the edge is hidden)
     let (mut with, mut strength, mut at_bound) = (without.clone(), None, false);
     if let Some(t) = target {
         let (lo, hi) = mechanism::strength_range(family, hidden);
@@ -346,12 +355,19 @@ pub fn generate(
     }
     let (e, e_shape) = enr(&with, &without, &noise, outs);
     let recorded = |s: &Solution, c: &Cond| edge(s, c, r0);
-    let e_beyond = if hidden == "null" {
-        Some(0.0)
+    let (e_beyond, rival) = if hidden == "null" {
+        (Some(0.0), None)
     } else {
-        detectable::enr_beyond_nuisance(
-            family, &d.conds, &nominal, &truth_k, &base, &with, &without, &noise, outs, &recorded,
-        )
+        let absorber = detectable::nuisance_columns(
+            family, &d.conds, &nominal, &truth_k, &base, &without, &noise, outs, &recorded,
+        );
+        let effect = detectable::effect(&with, &without, &noise, outs);
+        let column = |id: &str, s: f64| effect_at(id, s).ok().map(|y| detectable::effect(&y, &without, &noise, outs));
+        let rival = absorber
+            .as_ref()
+            .filter(|_| is_mech)
+            .and_then(|a| detectable::nearest_rival(family, hidden, a, &effect, &column));
+        (absorber.map(|a| a.left(&effect)), rival)
     };
     // Noise, then the files.
     let rec: Vec<[f64; 4]> =
@@ -419,6 +435,8 @@ pub fn generate(
         enr: e,
         enr_shape: e_shape,
         enr_beyond_nuisance: e_beyond,
+        rival_chi2: rival.as_ref().map(|r| r.1),
+        nearest_rival: rival.map(|r| r.0),
         strength,
         at_bound,
         edge_radius_um: [if plough { 0.0 } else { r0 * 1e6 }, r_rec * 1e6],

@@ -9,6 +9,9 @@ use serde::{Deserialize, Serialize};
 
 use super::mechanism::{DECOYS, MECHANISMS};
 
+mod breakdown;
+use breakdown::{binned, by_rival, by_shadow_fidelity, misses_by_cause};
+
 /// What the detector said about one dataset (only the report keys the benchmark reads).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Outcome {
@@ -25,6 +28,13 @@ pub struct Outcome {
     /// ENR beyond the stated nuisance (`detectable.rs`), when generated and available.
     #[serde(default)]
     pub enr_beyond_nuisance: Option<f64>,
+    /// The sum of squares the nuisance and the nearest rival in the generator's own form leave of
+    /// the noise-free effect (`detectable::nearest_rival`), when generated and available.
+    #[serde(default)]
+    pub rival_chi2: Option<f64>,
+    /// That rival.
+    #[serde(default)]
+    pub nearest_rival: Option<String>,
     /// `ok`, `generation_failed` or `diagnosis_error` (`generated` under `--generate-only`).
     pub status: String,
     /// The error, when not ok.
@@ -85,111 +95,6 @@ pub fn wilson(k: usize, n: usize) -> (f64, f64) {
     ((centre - half).max(0.0), (centre + half).min(1.0))
 }
 
-/// A table of detection, claims and naming per bin of `key` ([0, 1), [1, 2), [2, 4), >= 4); a
-/// dataset whose key is `None` is in no bin.
-fn binned(s: &mut String, label: &str, mech: &[&Outcome], key: impl Fn(&Outcome) -> Option<f64>) {
-    let _ = writeln!(s, "\n| {label} | n | detected (verdict not `none`) | a mechanism claimed | named correctly |");
-    let _ = writeln!(s, "|---|---|---|---|---|");
-    for (lo, hi, bin) in
-        [(0.0, 1.0, "[0, 1)"), (1.0, 2.0, "[1, 2)"), (2.0, 4.0, "[2, 4)"), (4.0, f64::INFINITY, ">= 4")]
-    {
-        let rows: Vec<&&Outcome> = mech.iter().filter(|o| key(o).is_some_and(|e| (lo..hi).contains(&e))).collect();
-        let det = rows.iter().filter(|o| o.ok() && o.verdict.as_deref() != Some("none")).count();
-        let cl = rows.iter().filter(|o| o.claims()).count();
-        let nm = rows.iter().filter(|o| o.named()).count();
-        let n = rows.len();
-        let _ = writeln!(s, "| {bin} | {n} | {} | {} | {} |", pct(det, n), pct(cl, n), pct(nm, n));
-    }
-}
-
-/// Why a mechanism dataset at ENR >= 2 was not named (`None` when it was).
-fn miss_cause(o: &Outcome) -> Option<usize> {
-    if o.named() {
-        None
-    } else if !o.ok() {
-        Some(4)
-    } else if o.ambiguous_with.contains(&o.hidden) {
-        Some(0)
-    } else if !o.selected.is_empty() {
-        Some(1)
-    } else if o.enr_beyond_nuisance.is_some_and(|e| e < 1.0) {
-        Some(2)
-    } else {
-        Some(3)
-    }
-}
-
-/// The misses at ENR >= 2 by cause, per mechanism: what the data could not separate (`ambiguous`
-/// with the truth among the near-equivalent rivals), a wrong name, nothing claimed where the stated
-/// nuisance reproduces the effect (ENR beyond nuisance < 1, `detectable.rs`), nothing claimed
-/// otherwise, and diagnosis errors.
-fn misses_by_cause(s: &mut String, mech: &[&Outcome]) {
-    let _ = writeln!(
-        s,
-        "\n**Misses at ENR >= 2 by cause:** `ambiguous` with the truth among the near-equivalent rivals; \
-         another mechanism named; nothing claimed where the stated nuisance reproduces the effect (ENR \
-         beyond nuisance < 1); nothing claimed otherwise; diagnosis error.\n"
-    );
-    let _ = writeln!(
-        s,
-        "| mechanism | missed | ambiguous, truth among the rivals | another named | nothing claimed, ENR beyond nuisance < 1 | nothing claimed, ENR beyond nuisance >= 1 | diagnosis error |"
-    );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
-    let mut total = [0usize; 5];
-    let mut row = |label: &str, rows: Vec<&&Outcome>, total: &mut [usize; 5]| {
-        let mut c = [0usize; 5];
-        for o in &rows {
-            if let Some(k) = miss_cause(o) {
-                c[k] += 1;
-                total[k] += 1;
-            }
-        }
-        let missed: usize = c.iter().sum();
-        let _ =
-            writeln!(s, "| {label} | {missed}/{} | {} | {} | {} | {} | {} |", rows.len(), c[0], c[1], c[2], c[3], c[4]);
-    };
-    let strong = |o: &&&Outcome| o.strong();
-    for id in MECHANISMS {
-        row(id, mech.iter().filter(strong).filter(|o| o.hidden == id).collect(), &mut total);
-    }
-    let n = mech.iter().filter(strong).count();
-    let missed: usize = total.iter().sum();
-    let _ = writeln!(
-        s,
-        "| all | {missed}/{n} | {} | {} | {} | {} | {} |",
-        total[0], total[1], total[2], total[3], total[4]
-    );
-}
-
-/// Naming at ENR >= 2 and clean nulls by the shadow's fitted RMS against the simulation
-/// (`shadow_rms_pct`): the signatures come from the shadow, so naming follows its fidelity.
-fn by_shadow_fidelity(s: &mut String, mech: &[&Outcome], nulls: &[&Outcome]) {
-    let _ = writeln!(
-        s,
-        "\n**By the shadow's fit to the simulation** (`shadow_rms_pct`, the fitted shadow's RMS against \
-         `simulation.csv`; the signatures come from the shadow):\n"
-    );
-    let _ = writeln!(s, "| shadow RMS | named at ENR >= 2 | nulls with nothing selected |");
-    let _ = writeln!(s, "|---|---|---|");
-    let bins =
-        [(0.0, 3.0, "below 3 %"), (3.0, 6.0, "3-6 %"), (6.0, 10.0, "6-10 %"), (10.0, f64::INFINITY, "10 % and above")];
-    for (lo, hi, label) in bins {
-        let inside = |o: &&&Outcome| o.shadow_rms_pct.is_some_and(|r| (lo..hi).contains(&r));
-        let m: Vec<&&Outcome> = mech.iter().filter(|o| o.strong()).filter(inside).collect();
-        let n: Vec<&&Outcome> = nulls.iter().filter(inside).collect();
-        let _ = writeln!(
-            s,
-            "| {label} | {} | {} |",
-            pct(m.iter().filter(|o| o.named()).count(), m.len()),
-            pct(n.iter().filter(|o| o.ok() && o.selected.is_empty()).count(), n.len())
-        );
-    }
-    let none = mech.iter().filter(|o| o.strong() && o.shadow_rms_pct.is_none()).count();
-    if none > 0 {
-        let _ = writeln!(s, "\n{none} mechanism datasets at ENR >= 2 have no shadow (or no report).");
-    }
-}
-
 fn pct(k: usize, n: usize) -> String {
     if n == 0 {
         "-".into()
@@ -209,6 +114,45 @@ fn median(mut v: Vec<f64>) -> Option<f64> {
 
 fn fmt_pct(x: Option<f64>) -> String {
     x.map_or("-".into(), |x| format!("{:+.0} %", 100.0 * x))
+}
+
+/// The generation summary of one family (`--generate-only`): datasets per kind, generation failures
+/// with their reasons, and per mechanism the count at ENR >= 2 and the median ENR and ENR beyond
+/// nuisance, and how many at ENR >= 2 a rival reproduces (`detectable::nearest_rival`: sum of
+/// squares < 2).
+pub fn generation_summary(family: &str, outcomes: &[Outcome]) -> String {
+    let median = |v: Vec<f64>| median(v).map_or_else(|| "-".to_string(), |m| format!("{m:.2}"));
+    let failed: Vec<&Outcome> = outcomes.iter().filter(|o| o.status == "generation_failed").collect();
+    let mut s = format!(
+        "family {family}: {} datasets, {} generated, {} generation failures\n",
+        outcomes.len(),
+        outcomes.len() - failed.len(),
+        failed.len()
+    );
+    for o in &failed {
+        s.push_str(&format!("  failed {:03} {}: {}\n", o.index, o.hidden, o.reason));
+    }
+    s.push_str(
+        "  kind                 n  failed  ENR>=2  median ENR  median ENR beyond nuisance  ENR>=2 with rival chi2 < 2\n",
+    );
+    let kinds = std::iter::once("null").chain(MECHANISMS).chain(DECOYS);
+    for k in kinds {
+        let of: Vec<&Outcome> = outcomes.iter().filter(|o| o.hidden == k).collect();
+        let ok: Vec<&&Outcome> = of.iter().filter(|o| o.status != "generation_failed").collect();
+        let strong = ok.iter().filter(|o| o.enr.is_some_and(|e| e >= 2.0)).count();
+        let confusable =
+            ok.iter().filter(|o| o.enr.is_some_and(|e| e >= 2.0) && o.rival_chi2.is_some_and(|e| e < 2.0)).count();
+        s.push_str(&format!(
+            "  {k:<18} {:>3} {:>7} {:>7} {:>11} {:>27} {:>27}\n",
+            of.len(),
+            of.len() - ok.len(),
+            strong,
+            median(ok.iter().filter_map(|o| o.enr).collect()),
+            median(ok.iter().filter_map(|o| o.enr_beyond_nuisance).collect()),
+            confusable,
+        ));
+    }
+    s
 }
 
 /// Headline numbers of one family (also in `scores.json`).
@@ -312,8 +256,10 @@ pub fn summarise(family: &str, outcomes: &[Outcome]) -> (String, Headline) {
     misses_by_cause(&mut s, &mech);
     by_shadow_fidelity(&mut s, &mech, &nulls);
     // Naming against ENR, and against the ENR beyond the stated nuisance.
-    binned(&mut s, "ENR", &mech, |o| o.enr.or(Some(0.0)));
-    binned(&mut s, "ENR beyond nuisance", &mech, |o| o.enr_beyond_nuisance);
+    let bins = [(0.0, 1.0, "[0, 1)"), (1.0, 2.0, "[1, 2)"), (2.0, 4.0, "[2, 4)"), (4.0, f64::INFINITY, ">= 4")];
+    binned(&mut s, "ENR", &bins, &mech, |o| o.enr.or(Some(0.0)));
+    binned(&mut s, "ENR beyond nuisance", &bins, &mech, |o| o.enr_beyond_nuisance);
+    by_rival(&mut s, &mech);
     let na = mech.iter().filter(|o| o.enr_beyond_nuisance.is_none()).count();
     if na > 0 {
         let _ = writeln!(s, "\n{na} mechanism datasets have no ENR beyond nuisance (a perturbed solve failed).");
@@ -412,6 +358,7 @@ pub fn summarise(family: &str, outcomes: &[Outcome]) -> (String, Headline) {
 
 #[cfg(test)]
 mod tests {
+    use super::breakdown::miss_cause;
     use super::*;
 
     fn outcome(hidden: &str, bn: f64, selected: &[&str], ambiguous: &[&str]) -> Outcome {
@@ -422,6 +369,8 @@ mod tests {
             enr: Some(3.0),
             enr_shape: None,
             enr_beyond_nuisance: Some(bn),
+            rival_chi2: None,
+            nearest_rival: None,
             status: "ok".into(),
             reason: String::new(),
             verdict: Some(if selected.is_empty() { "none" } else { "missing_physics" }.into()),
