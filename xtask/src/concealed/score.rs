@@ -133,7 +133,7 @@ pub fn generation_summary(family: &str, outcomes: &[Outcome]) -> String {
         s.push_str(&format!("  failed {:03} {}: {}\n", o.index, o.hidden, o.reason));
     }
     s.push_str(
-        "  kind                 n  failed  ENR>=2  median ENR  median ENR beyond nuisance  ENR>=2 with rival chi2 < 2\n",
+        "  kind                 n  failed  ENR>=2  median ENR  median ENR beyond nuisance  ENR>=2 a rival reproduces (leaves < 2)\n",
     );
     let kinds = std::iter::once("null").chain(MECHANISMS).chain(DECOYS);
     for k in kinds {
@@ -143,7 +143,7 @@ pub fn generation_summary(family: &str, outcomes: &[Outcome]) -> String {
         let confusable =
             ok.iter().filter(|o| o.enr.is_some_and(|e| e >= 2.0) && o.rival_chi2.is_some_and(|e| e < 2.0)).count();
         s.push_str(&format!(
-            "  {k:<18} {:>3} {:>7} {:>7} {:>11} {:>27} {:>27}\n",
+            "  {k:<18} {:>3} {:>7} {:>7} {:>11} {:>27} {:>38}\n",
             of.len(),
             of.len() - ok.len(),
             strong,
