@@ -293,12 +293,7 @@ mod tests {
     fn c38_test3_zone(h_m: f64) -> ZoneSolution {
         use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState};
         // Paper Tables 2 and 6: 240 m/min, 0.075 mm, 1.95 mm, 0 deg; 224 N/mm, 186 N/mm, 0.157 mm.
-        let t = cutcal_model::CuttingTest::new("3", 4.0, 0.075e-3, 1.95e-3, 0.0)
-            .unwrap()
-            .with_forces(Some(224e3), Some(186e3))
-            .unwrap()
-            .with_chip_thickness(Some(0.157e-3))
-            .unwrap();
+        let t = cutcal_model::reference::c38_test3();
         let cfg = DpzdConfig::new(h_m, 4.0, DpzdVariant::Enhanced { tolerance_c: 1e-6, max_iterations: 50 }).unwrap();
         dpzd::solve(&cutcal_model::reference::c38_table3(), &ShearPlaneState::from_test(&t).unwrap(), &cfg).unwrap()
     }

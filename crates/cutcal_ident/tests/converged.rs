@@ -8,7 +8,7 @@
 use cutcal_ident::quadrature::{identify_converged, ConvergedOptions};
 use cutcal_ident::{identify_from_zone_with, JcBounds, JcConstants, MultistartOptions};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState, ZoneSolution};
-use cutcal_model::{CuttingTest, JcParams, RateTerm};
+use cutcal_model::{JcParams, RateTerm};
 
 const BOUNDS: JcBounds =
     JcBounds { a_mpa: [1.0, 2000.0], b_mpa: [1.0, 2000.0], n: [0.0, 0.25], c: [1e-4, 1.0], m: [0.9, 1.1] };
@@ -17,12 +17,7 @@ const ENHANCED: DpzdVariant = DpzdVariant::Enhanced { tolerance_c: 1e-6, max_ite
 
 fn zone(h_m: f64) -> ZoneSolution {
     // C38 test 3: paper Tables 2 and 6.
-    let t = CuttingTest::new("3", 4.0, 0.075e-3, 1.95e-3, 0.0)
-        .unwrap()
-        .with_forces(Some(224e3), Some(186e3))
-        .unwrap()
-        .with_chip_thickness(Some(0.157e-3))
-        .unwrap();
+    let t = cutcal_model::reference::c38_test3();
     let s = ShearPlaneState::from_test(&t).unwrap();
     dpzd::solve(&cutcal_model::reference::c38_table3(), &s, &DpzdConfig::new(h_m, 4.0, ENHANCED).unwrap()).unwrap()
 }

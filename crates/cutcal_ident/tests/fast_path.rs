@@ -39,12 +39,7 @@ fn c38() -> Material {
 
 fn test3() -> CuttingTest {
     // C38 test 3: paper Tables 2 and 6.
-    CuttingTest::new("3", 4.0, 0.075e-3, 1.95e-3, 0.0)
-        .unwrap()
-        .with_forces(Some(224e3), Some(186e3))
-        .unwrap()
-        .with_chip_thickness(Some(0.157e-3))
-        .unwrap()
+    cutcal_model::reference::c38_test3()
 }
 
 fn zone(variant: DpzdVariant, h_m: f64) -> ZoneSolution {

@@ -8,7 +8,7 @@
 
 use cutcal_ident::{identify_from_zone_with, JcBounds, JcConstants, MultistartOptions};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState};
-use cutcal_model::{CuttingTest, Material, RateTerm};
+use cutcal_model::{Material, RateTerm};
 
 fn c38() -> Material {
     cutcal_model::reference::c38_table3()
@@ -16,12 +16,7 @@ fn c38() -> Material {
 
 fn state() -> ShearPlaneState {
     // C38 test 3: paper Tables 2 and 6.
-    let t = CuttingTest::new("3", 4.0, 0.075e-3, 1.95e-3, 0.0)
-        .unwrap()
-        .with_forces(Some(224e3), Some(186e3))
-        .unwrap()
-        .with_chip_thickness(Some(0.157e-3))
-        .unwrap();
+    let t = cutcal_model::reference::c38_test3();
     ShearPlaneState::from_test(&t).unwrap()
 }
 

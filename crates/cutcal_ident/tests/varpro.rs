@@ -14,7 +14,7 @@ use cutcal_ident::dpzd_fit::{identify, ZoneFitProblem};
 use cutcal_ident::multistart::{multistart, SampleFilter};
 use cutcal_ident::{Bounds, JcBounds, JcConstants, MultistartOptions, Problem};
 use cutcal_model::dpzd::{self, DpzdConfig, DpzdVariant, ShearPlaneState, ZonePoint};
-use cutcal_model::{CuttingTest, JcParams, RateTerm};
+use cutcal_model::{JcParams, RateTerm};
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
 
@@ -26,12 +26,7 @@ const BOUNDS: JcBounds =
 fn zone_points() -> &'static [ZonePoint] {
     static PTS: OnceLock<Vec<ZonePoint>> = OnceLock::new();
     PTS.get_or_init(|| {
-        let t = CuttingTest::new("3", 4.0, 0.075e-3, 1.95e-3, 0.0)
-            .unwrap()
-            .with_forces(Some(224e3), Some(186e3))
-            .unwrap()
-            .with_chip_thickness(Some(0.157e-3))
-            .unwrap();
+        let t = cutcal_model::reference::c38_test3();
         let s = ShearPlaneState::from_test(&t).unwrap();
         let cfg = DpzdConfig::new(1e-4, 4.0, DpzdVariant::Enhanced { tolerance_c: 1e-6, max_iterations: 50 }).unwrap();
         let z = dpzd::solve(&cutcal_model::reference::c38_table3(), &s, &cfg).unwrap();

@@ -1,6 +1,7 @@
 //! Published reference materials, for tests, benchmarks and examples (the fixtures in
 //! `fixtures/materials/` carry the same numbers for the command line).
 
+use crate::cutting_test::CuttingTest;
 use crate::material::{Material, ThermalProperties};
 use crate::poly::TempPolynomial;
 
@@ -61,4 +62,17 @@ pub fn aisi1045_lalwani2009() -> Material {
         room_c: 25.0,
         elastic: None,
     }
+}
+
+/// C38 test 3 as recorded: 240 m/min (4 m/s), h 0.075 mm, width 1.95 mm, rake 0 deg; Fc 224 N/mm,
+/// Ft 186 N/mm, chip 0.157 mm, all per unit width in SI.
+///
+/// **Source:** paper Tables 2 and 6.
+#[must_use]
+pub fn c38_test3() -> CuttingTest {
+    // The numbers below are finite, positive literals, so construction cannot fail.
+    CuttingTest::new("3", 4.0, 0.075e-3, 1.95e-3, 0.0)
+        .and_then(|t| t.with_forces(Some(224e3), Some(186e3)))
+        .and_then(|t| t.with_chip_thickness(Some(0.157e-3)))
+        .expect("paper Table 2 literals are valid")
 }

@@ -1,25 +1,11 @@
 //! Unit tests of `joint`.
 
 use super::*;
-use cutcal_model::{JcParams, TempPolynomial, ThermalProperties};
+use cutcal_model::JcParams;
 
 /// AISI 1045 with Lalwani et al. 2009's thermal data (rho 7862, Cp 420 + 0.504 T, K 52.61 - 0.0281 T).
 fn aisi1045() -> Material {
-    let rho = TempPolynomial::constant(7862.0);
-    Material {
-        name: "AISI1045".into(),
-        thermal: ThermalProperties {
-            rho_cp: rho.product(&TempPolynomial::new(vec![420.0, 0.504]).unwrap()),
-            density: rho,
-            conductivity: TempPolynomial::new(vec![52.61, -0.0281]).unwrap(),
-            valid_from_c: 0.0,
-            valid_to_c: 1400.0,
-        },
-        yield_strength: None,
-        melting_c: 1460.0,
-        room_c: 25.0,
-        elastic: None,
-    }
+    cutcal_model::reference::aisi1045_lalwani2009()
 }
 
 fn options() -> JointOptions {

@@ -5,12 +5,7 @@ use crate::material::tests_support::c38;
 
 fn c38_test3() -> ShearPlaneState {
     // C38 test 3, paper Tables 2 and 6.
-    let t = CuttingTest::new("3", 4.0, 0.075e-3, 1.95e-3, 0.0)
-        .unwrap()
-        .with_forces(Some(224e3), Some(186e3))
-        .unwrap()
-        .with_chip_thickness(Some(0.157e-3))
-        .unwrap();
+    let t = crate::reference::c38_test3();
     ShearPlaneState::from_test(&t).unwrap()
 }
 
