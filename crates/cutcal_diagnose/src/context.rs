@@ -33,6 +33,10 @@ pub struct Context {
     /// Whether the run order behind `wear_state` is the row order of the recordings (no `order`
     /// and no `flank_wear_mm` column): the report says so.
     pub order_from_rows: bool,
+    /// How many tests' measured VB was moved to make the wear non-decreasing in the run order
+    /// (0 when VB was not measured, the run order is unknown or VB never falls along it): the
+    /// report says so.
+    pub vb_tests_smoothed: usize,
 }
 
 impl Context {
@@ -45,21 +49,21 @@ impl Context {
     pub fn of(tests: &[CuttingTest]) -> Self {
         let vb: Vec<Option<f64>> = tests.iter().map(|t| t.flank_wear_m).collect();
         let mut order_from_rows = false;
-        let wear_state = if vb.iter().all(Option::is_some) {
-            let max = vb.iter().flatten().fold(0.0f64, |a, b| a.max(*b));
-            (max > 0.0).then(|| vb.iter().flatten().map(|v| v / max).collect())
-        } else if tests.iter().all(|t| t.order.is_some()) {
-            let max = tests.iter().filter_map(|t| t.order).max().unwrap_or(0) as f64;
-            (max > 0.0).then(|| tests.iter().filter_map(|t| t.order).map(|o| o as f64 / max).collect())
-        } else if tests.len() >= 2
-            && tests.iter().all(|t| t.order.is_none())
-            && !sorted_by(tests, |t| t.uncut_chip_thickness_m)
-            && !sorted_by(tests, |t| t.speed_m_per_s)
-        {
-            // Row i of n ran i-th: state (i + 1) / n, as an `order` column 1..n would give.
-            order_from_rows = true;
-            let n = tests.len() as f64;
-            Some((0..tests.len()).map(|i| (i + 1) as f64 / n).collect())
+        let mut vb_tests_smoothed = 0;
+        let wear_state: Option<Vec<f64>> = if vb.iter().all(Option::is_some) {
+            // One tool's flank wear cannot fall as it cuts: a measured fall along the run order is
+            // the scatter of the VB reading, and the wear is its non-decreasing least-squares fit.
+            let raw: Vec<f64> = vb.iter().flatten().copied().collect();
+            let smooth = run_positions(tests).map_or_else(|| raw.clone(), |pos| monotone_in_run_order(&raw, &pos));
+            vb_tests_smoothed = smooth.iter().zip(&raw).filter(|(a, b)| (*a - *b).abs() > 1e-12).count();
+            let max = smooth.iter().fold(0.0f64, |a, b| a.max(*b));
+            (max > 0.0).then(|| smooth.iter().map(|v| v / max).collect())
+        } else if let Some(pos) = run_positions(tests) {
+            // Row i of n ran i-th when there is no `order` column: state (i + 1) / n, as an
+            // `order` column 1..n would give.
+            order_from_rows = tests.iter().all(|t| t.order.is_none());
+            let max = pos.iter().fold(0.0f64, |a, b| a.max(*b));
+            (max > 0.0).then(|| pos.iter().map(|p| p / max).collect())
         } else {
             None
         };
@@ -76,6 +80,7 @@ impl Context {
         };
         Self {
             wear_state,
+            vb_tests_smoothed,
             bue_onset: 0.0,
             bue_gate_c: None,
             friction_v_ref_m_min,
@@ -115,6 +120,7 @@ impl Context {
             size_h_ref_m: self.size_h_ref_m,
             edge_shape: self.edge_shape.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             order_from_rows: self.order_from_rows,
+            vb_tests_smoothed: self.vb_tests_smoothed,
         }
     }
 }
@@ -127,4 +133,99 @@ fn sorted_by(tests: &[CuttingTest], f: impl Fn(&CuttingTest) -> f64) -> bool {
     let down = v.windows(2).all(|w| w[1] <= w[0]);
     let varies = v.iter().any(|x| (x - v[0]).abs() > 1e-9 * v[0].abs());
     varies && (up || down)
+}
+
+/// The run position of each test when the run order is known: the `order` column, else the row
+/// number (1..n) when the rows are not a listing sorted by thickness or speed.
+fn run_positions(tests: &[CuttingTest]) -> Option<Vec<f64>> {
+    if tests.iter().all(|t| t.order.is_some()) {
+        Some(tests.iter().filter_map(|t| t.order).map(|o| o as f64).collect())
+    } else if tests.len() >= 2
+        && tests.iter().all(|t| t.order.is_none())
+        && !sorted_by(tests, |t| t.uncut_chip_thickness_m)
+        && !sorted_by(tests, |t| t.speed_m_per_s)
+    {
+        Some((1..=tests.len()).map(|i| i as f64).collect())
+    } else {
+        None
+    }
+}
+
+/// The least-squares non-decreasing fit of `y` over the run positions `pos` (pool adjacent
+/// violators, Barlow et al. 1972): flank wear cannot fall while one tool cuts.
+fn monotone_in_run_order(y: &[f64], pos: &[f64]) -> Vec<f64> {
+    let mut idx: Vec<usize> = (0..y.len()).collect();
+    idx.sort_by(|&a, &b| pos[a].total_cmp(&pos[b]));
+    let mut blocks: Vec<(f64, usize)> = Vec::new();
+    for &i in &idx {
+        blocks.push((y[i], 1));
+        while blocks.len() >= 2 && blocks[blocks.len() - 2].0 > blocks[blocks.len() - 1].0 {
+            let (m2, n2) = blocks.pop().unwrap_or((0.0, 0));
+            let (m1, n1) = blocks.pop().unwrap_or((0.0, 0));
+            blocks.push(((m1 * n1 as f64 + m2 * n2 as f64) / (n1 + n2) as f64, n1 + n2));
+        }
+    }
+    let mut out = vec![0.0; y.len()];
+    let mut k = 0;
+    for (m, n) in blocks {
+        for &i in &idx[k..k + n] {
+            out[i] = m;
+        }
+        k += n;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn log(vb_mm: &[f64], order: Option<&[u32]>) -> Vec<CuttingTest> {
+        // Speeds and thicknesses unsorted, so that the rows may stand for the run order.
+        let (v, h) = ([100.0, 200.0, 150.0, 120.0, 180.0], [0.2, 0.1, 0.15, 0.12, 0.18]);
+        (0..vb_mm.len())
+            .map(|i| {
+                let mut t = CuttingTest::new(format!("t{i}"), v[i % 5] / 60.0, h[i % 5] * 1e-3, 1e-3, 0.0).unwrap();
+                t.flank_wear_m = Some(vb_mm[i] * 1e-3);
+                t.order = order.map(|o| o[i]);
+                t
+            })
+            .collect()
+    }
+
+    #[test]
+    fn pool_adjacent_violators_by_hand() {
+        // 1, 3, 2, 4 in run order: the violating pair (3, 2) pools to 2.5.
+        assert_eq!(monotone_in_run_order(&[1.0, 3.0, 2.0, 4.0], &[1.0, 2.0, 3.0, 4.0]), vec![1.0, 2.5, 2.5, 4.0]);
+        // A fall that spans three: 4, 1, 1 pools to 2 each after 0.
+        assert_eq!(monotone_in_run_order(&[0.0, 4.0, 1.0, 1.0], &[1.0, 2.0, 3.0, 4.0]), vec![0.0, 2.0, 2.0, 2.0]);
+        // The positions, not the listing, set the order: listed as run 3, 1, 2.
+        assert_eq!(monotone_in_run_order(&[2.0, 1.0, 3.0], &[3.0, 1.0, 2.0]), vec![2.5, 1.0, 2.5]);
+        // Already non-decreasing: unchanged.
+        assert_eq!(monotone_in_run_order(&[0.0, 0.0, 1.0], &[1.0, 2.0, 3.0]), vec![0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn measured_wear_is_made_non_decreasing_in_the_run_order() {
+        // VB 0.10, 0.30, 0.20, 0.40 mm in row order: the fall 0.30 -> 0.20 pools to 0.25, two
+        // tests move, and the state is VB / 0.40.
+        let ctx = Context::of(&log(&[0.1, 0.3, 0.2, 0.4], None));
+        let w = ctx.wear_state.unwrap();
+        for (a, b) in w.iter().zip([0.25, 0.625, 0.625, 1.0]) {
+            assert!((a - b).abs() < 1e-12, "{w:?}");
+        }
+        assert_eq!(ctx.vb_tests_smoothed, 2);
+        // The `order` column sets the run: the same readings run 2, 1, 3, 4 read 0.3, 0.1, 0.2,
+        // 0.4 in run order; 0.3 and 0.1 pool to 0.2, which the third reading equals.
+        let ctx = Context::of(&log(&[0.1, 0.3, 0.2, 0.4], Some(&[2, 1, 3, 4])));
+        let w = ctx.wear_state.unwrap();
+        for (a, b) in w.iter().zip([0.5, 0.5, 0.5, 1.0]) {
+            assert!((a - b).abs() < 1e-12, "{w:?}");
+        }
+        assert_eq!(ctx.vb_tests_smoothed, 2);
+        // Rising readings are kept as measured.
+        let ctx = Context::of(&log(&[0.0, 0.1, 0.2, 0.4], None));
+        assert_eq!(ctx.vb_tests_smoothed, 0);
+        assert_eq!(ctx.wear_state, Some(vec![0.0, 0.25, 0.5, 1.0]));
+    }
 }

@@ -384,6 +384,14 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 .into(),
         );
     }
+    if ctx0.vb_tests_smoothed > 0 && usable.contains(&MechanismId::FlankWear) {
+        simulator_notes.push(format!(
+            "flank wear: the measured VB falls along the run order, so it was read as one tool's wear with \
+             reading scatter and made non-decreasing (least squares; {} of {} tests moved)",
+            ctx0.vb_tests_smoothed,
+            tests.len()
+        ));
+    }
     Ok(Report {
         verdict,
         mismatch,
