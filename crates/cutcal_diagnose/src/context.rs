@@ -11,7 +11,8 @@ use crate::simulator::Simulator;
 /// Per-dataset context a mechanism needs (computed from the tests only).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Context {
-    /// Wear state per test in [0, 1]: VB/VB_max when VB was measured, else order/order_max.
+    /// Wear state per test in [0, 1]: VB/VB_max when VB was measured (made non-decreasing in the
+    /// run order when that is known), else order/order_max.
     pub wear_state: Option<Vec<f64>>,
     /// Built-up-edge onset on the gate coordinate (chosen on a grid by the fitter): the interface
     /// temperature, degC, when `bue_gate_c` is set, else the speed, m/min.
@@ -227,5 +228,36 @@ mod tests {
         let ctx = Context::of(&log(&[0.0, 0.1, 0.2, 0.4], None));
         assert_eq!(ctx.vb_tests_smoothed, 0);
         assert_eq!(ctx.wear_state, Some(vec![0.0, 0.25, 0.5, 1.0]));
+    }
+
+    proptest::proptest! {
+        /// Pool adjacent violators gives a non-decreasing sequence in the run order, keeps the
+        /// readings' sum (each pooled block is its readings' mean) and leaves a non-decreasing
+        /// input as it is.
+        #[test]
+        fn monotone_fit_rises_keeps_the_sum_and_fixes_rising_input(
+            y in proptest::collection::vec(0.0f64..0.5, 1..20),
+            seed in 0u64..1000,
+        ) {
+            let n = y.len();
+            // A permutation of run positions from the seed (an LCG shuffle; no extra dependency).
+            let mut pos: Vec<f64> = (1..=n).map(|i| i as f64).collect();
+            let mut r = seed;
+            for i in (1..n).rev() {
+                r = r.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                pos.swap(i, (r >> 33) as usize % (i + 1));
+            }
+            let m = monotone_in_run_order(&y, &pos);
+            let mut idx: Vec<usize> = (0..n).collect();
+            idx.sort_by(|&a, &b| pos[a].total_cmp(&pos[b]));
+            for w in idx.windows(2) {
+                proptest::prop_assert!(m[w[1]] >= m[w[0]] - 1e-12);
+            }
+            proptest::prop_assert!((m.iter().sum::<f64>() - y.iter().sum::<f64>()).abs() < 1e-9);
+            let mut rising: Vec<f64> = y.clone();
+            rising.sort_by(f64::total_cmp);
+            let ident: Vec<f64> = (1..=n).map(|i| i as f64).collect();
+            proptest::prop_assert_eq!(monotone_in_run_order(&rising, &ident), rising);
+        }
     }
 }
