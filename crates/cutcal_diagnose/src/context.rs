@@ -57,14 +57,12 @@ impl Context {
             let raw: Vec<f64> = vb.iter().flatten().copied().collect();
             let smooth = run_positions(tests).map_or_else(|| raw.clone(), |pos| monotone_in_run_order(&raw, &pos));
             vb_tests_smoothed = smooth.iter().zip(&raw).filter(|(a, b)| (*a - *b).abs() > 1e-12).count();
-            let max = smooth.iter().fold(0.0f64, |a, b| a.max(*b));
-            (max > 0.0).then(|| smooth.iter().map(|v| v / max).collect())
+            over_max(&smooth)
         } else if let Some(pos) = run_positions(tests) {
             // Row i of n ran i-th when there is no `order` column: state (i + 1) / n, as an
             // `order` column 1..n would give.
             order_from_rows = tests.iter().all(|t| t.order.is_none());
-            let max = pos.iter().fold(0.0f64, |a, b| a.max(*b));
-            (max > 0.0).then(|| pos.iter().map(|p| p / max).collect())
+            over_max(&pos)
         } else {
             None
         };
@@ -134,6 +132,12 @@ fn sorted_by(tests: &[CuttingTest], f: impl Fn(&CuttingTest) -> f64) -> bool {
     let down = v.windows(2).all(|w| w[1] <= w[0]);
     let varies = v.iter().any(|x| (x - v[0]).abs() > 1e-9 * v[0].abs());
     varies && (up || down)
+}
+
+/// `v` over its largest value, when that is positive.
+fn over_max(v: &[f64]) -> Option<Vec<f64>> {
+    let max = v.iter().fold(0.0f64, |a, b| a.max(*b));
+    (max > 0.0).then(|| v.iter().map(|x| x / max).collect())
 }
 
 /// The run position of each test when the run order is known: the `order` column, else the row
