@@ -227,6 +227,8 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 "too few numbers to test it".into()
             } else if !c.significant {
                 format!("not significant (p = {:.2e} >= {:.4})", c.p, alpha_round)
+            } else if let Some(why) = &c.conflict {
+                why.clone()
             } else if !c.ci_ok {
                 "interval includes the off value or the estimate sits on a bound".into()
             } else {
@@ -282,6 +284,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 .filter(|&i| {
                     i != b
                         && cands[i].significant
+                        && cands[i].conflict.is_none()
                         && cands[i].daicc - cands[b].daicc < cfg.ambiguity_delta_aicc
                         && cosine(&cands[i].change, &cands[b].change) > cfg.ambiguity_cosine
                 })

@@ -200,6 +200,36 @@ fn nix_gao(l_um: f64, t: &CuttingTest) -> f64 {
     (1.0 + l_um.max(0.0) * 1e-6 / t.uncut_chip_thickness_m).sqrt()
 }
 
+/// Why a thermal-softening refit is not a softening change, when it is not.
+///
+/// M7 claims softening stronger, or weaker, than the model's: a flow-stress curve that lies below
+/// (or above) the JC law's at every temperature. Each form alone is one-signed in that sense:
+/// k_T > 0 lets the flow stress see a larger temperature rise (stronger) and ln_m > 0 a larger JC
+/// exponent, whose factor 1 - T*^m is larger at every T* in (0, 1) (weaker; Johnson & Cook 1983).
+/// When the data demand both forms (each 95 % interval `ci` excludes 0) in opposite directions,
+/// the fitted curve crosses the model's: a change of the curve's shape with temperature, which the
+/// two forms can draw for any trend with temperature (a built-up edge, a friction or a partition
+/// that moves with speed), and not the mechanism claimed. `None` when the fit is one-signed.
+#[must_use]
+pub fn softening_conflict(ci: &[(f64, Option<f64>, Option<f64>)]) -> Option<String> {
+    let demanded = |c: &(f64, Option<f64>, Option<f64>)| match *c {
+        (v, Some(l), Some(h)) if l > 0.0 || h < 0.0 => Some(v),
+        _ => None,
+    };
+    let (k_t, ln_m) = (demanded(ci.first()?)?, demanded(ci.get(1)?)?);
+    // Stronger softening is k_T > 0 and ln_m < 0; a conflict is k_T and ln_m of one sign.
+    (k_t * ln_m > 0.0).then(|| {
+        let word = |stronger: bool| if stronger { "stronger" } else { "weaker" };
+        format!(
+            "both softening forms are demanded, in opposite directions (k_T = {k_t:+.3}: {}; ln_m = {ln_m:+.3}: {}): \
+             the fitted flow-stress curve crosses the model's, a shape change with temperature rather than \
+             softening stronger or weaker than the model's",
+            word(k_t > 0.0),
+            word(ln_m < 0.0)
+        )
+    })
+}
+
 /// Applies the output-level part of mechanism `id` to `preds`: only the dynamometer cross-talk
 /// (M11, ISO 21612) acts on the recorded outputs; every other mechanism is inside the model.
 pub fn correct(id: MechanismId, phi: &[f64], preds: &mut [Prediction]) {
@@ -290,6 +320,21 @@ mod tests {
             r[1].ft_n_per_m / r[0].ft_n_per_m
         };
         assert!(ratio(0.3) < 0.97 * ratio(0.0), "{} vs {}", ratio(0.3), ratio(0.0));
+    }
+
+    #[test]
+    fn softening_conflicts_only_when_both_forms_are_demanded_against_each_other() {
+        let c = |v: f64, l: f64, h: f64| (v, Some(l), Some(h));
+        // Both stronger (k_T > 0, ln_m < 0) or both weaker: one-signed, no conflict.
+        assert!(softening_conflict(&[c(0.2, 0.1, 0.3), c(-0.3, -0.4, -0.2)]).is_none());
+        assert!(softening_conflict(&[c(-0.2, -0.3, -0.1), c(0.1, 0.02, 0.2)]).is_none());
+        // One form not demanded (its interval spans 0), or not available: no conflict.
+        assert!(softening_conflict(&[c(0.02, -0.08, 0.11), c(0.7, 0.26, 0.7)]).is_none());
+        assert!(softening_conflict(&[(0.3, None, None), c(0.3, 0.1, 0.5)]).is_none());
+        // k_T stronger and ln_m weaker, both demanded: a crossing curve.
+        let why = softening_conflict(&[c(0.23, 0.16, 0.30), c(0.20, 0.07, 0.33)]).unwrap();
+        assert!(why.contains("k_T = +0.230: stronger") && why.contains("ln_m = +0.200: weaker"), "{why}");
+        assert!(softening_conflict(&[c(-0.25, -0.32, -0.18), c(-0.26, -0.44, -0.08)]).is_some());
     }
 
     #[test]

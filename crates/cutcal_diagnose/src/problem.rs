@@ -26,6 +26,8 @@ pub(crate) struct Candidate {
     /// Why the interval is not available (empty when it is).
     pub(crate) ci_note: String,
     pub(crate) ci_ok: bool,
+    /// Why the refit, significant or not, is not the mechanism's physics (`ci_ok` is then false).
+    pub(crate) conflict: Option<String>,
     pub(crate) change: Vec<f64>,
     /// Screening sensitivity of the first parameter (noise units per typical magnitude).
     pub(crate) sens: Vec<f64>,

@@ -7,7 +7,7 @@ use nalgebra::{DMatrix, DVector};
 
 use crate::error::DiagnoseError;
 use crate::fit::{self, data_jacobian, project_out, Fit, Spec};
-use crate::mechanism::{bue_onsets, info, MechanismId};
+use crate::mechanism::{bue_onsets, info, softening_conflict, MechanismId};
 use crate::problem::{Candidate, Problem};
 use crate::report::*;
 use crate::stats;
@@ -320,6 +320,9 @@ pub(crate) fn screen_and_refit(
             }
             ci = (0..d).map(|c| (f.x[current.k + c], None, None)).collect();
         }
+        // A softening refit that draws a crossing curve is not the mechanism (`softening_conflict`).
+        let conflict = (s.id == MechanismId::ThermalSoftening).then(|| softening_conflict(&ci)).flatten();
+        ci_ok &= conflict.is_none();
         let change: Vec<f64> = current.resid.iter().zip(&f.resid).map(|(a, b)| a - b).collect();
         out.push(Candidate {
             id: s.id,
@@ -333,6 +336,7 @@ pub(crate) fn screen_and_refit(
             ci,
             ci_note,
             ci_ok,
+            conflict,
             change,
             sens: s.sens,
             loco_after: None,
