@@ -209,14 +209,18 @@ fn nix_gao(l_um: f64, t: &CuttingTest) -> f64 {
 /// When the data demand both forms (each 95 % interval `ci` excludes 0) in opposite directions,
 /// the fitted curve crosses the model's: a change of the curve's shape with temperature, which the
 /// two forms can draw for any trend with temperature (a built-up edge, a friction or a partition
-/// that moves with speed), and not the mechanism claimed. `None` when the fit is one-signed.
+/// that moves with speed), and not the mechanism claimed. `None` when the fit is one-signed, and
+/// when either form sits on a bound of its range: that estimate is not free (the other form may be
+/// making up for the range the bound cut off), and its Wald interval is not valid there.
 #[must_use]
 pub fn softening_conflict(ci: &[(f64, Option<f64>, Option<f64>)]) -> Option<String> {
-    let demanded = |c: &(f64, Option<f64>, Option<f64>)| match *c {
+    let params = info(MechanismId::ThermalSoftening).params;
+    let demanded = |c: &(f64, Option<f64>, Option<f64>), p: &ParamInfo| match *c {
+        (v, _, _) if (v - p.lower).min(p.upper - v) < 1e-3 * (p.upper - p.lower) => None,
         (v, Some(l), Some(h)) if l > 0.0 || h < 0.0 => Some(v),
         _ => None,
     };
-    let (k_t, ln_m) = (demanded(ci.first()?)?, demanded(ci.get(1)?)?);
+    let (k_t, ln_m) = (demanded(ci.first()?, &params[0])?, demanded(ci.get(1)?, &params[1])?);
     // Stronger softening is k_T > 0 and ln_m < 0; a conflict is k_T and ln_m of one sign.
     (k_t * ln_m > 0.0).then(|| {
         let word = |stronger: bool| if stronger { "stronger" } else { "weaker" };
@@ -331,6 +335,8 @@ mod tests {
         // One form not demanded (its interval spans 0), or not available: no conflict.
         assert!(softening_conflict(&[c(0.02, -0.08, 0.11), c(0.7, 0.26, 0.7)]).is_none());
         assert!(softening_conflict(&[(0.3, None, None), c(0.3, 0.1, 0.5)]).is_none());
+        // ln_m on its upper bound 0.7 (not a free estimate): no conflict judged.
+        assert!(softening_conflict(&[c(0.1, 0.04, 0.15), c(0.7, 0.45, 0.7)]).is_none());
         // k_T stronger and ln_m weaker, both demanded: a crossing curve.
         let why = softening_conflict(&[c(0.23, 0.16, 0.30), c(0.20, 0.07, 0.33)]).unwrap();
         assert!(why.contains("k_T = +0.230: stronger") && why.contains("ln_m = +0.200: weaker"), "{why}");
