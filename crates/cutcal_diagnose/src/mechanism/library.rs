@@ -39,7 +39,11 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             hook: Some(Hook::WearLand),
             signature: "Fc +, Ft ++ growing with test order / measured VB, chip thickness unchanged",
             covariates: "flank wear VB per test, or the test order",
-            confounders: &[M::EdgePloughing],
+            // Cross-talk too: the land's normal-to-shear stress ratio differs between wear-land
+            // models (Smithey et al.'s profiles here, Teitenberg et al. 1992's uniform stresses,
+            // Waldorf 1996's plastic-then-elastic land), so an Ft excess in proportion to Fc left
+            // after a wear claim is as likely the land's true ratio as an instrument error.
+            confounders: &[M::EdgePloughing, M::ForceCrosstalk],
             separate_by: "measure VB after each test and randomise the test order",
         },
         M::ToolChipFriction => MechanismInfo {
@@ -138,7 +142,7 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             hook: None,
             signature: "Ft shifted in proportion to Fc (grows with h), chip unchanged",
             covariates: "a wide feed range",
-            confounders: &[M::EdgePloughing],
+            confounders: &[M::EdgePloughing, M::FlankWear],
             separate_by: "check the dynamometer with dead weights in each direction",
         },
     }
