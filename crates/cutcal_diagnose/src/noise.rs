@@ -14,9 +14,9 @@
 //! the residuals of a null look like a mismatch (twenty-fifth session: a null of the blind benchmark
 //! with t_c noise 2.6 % estimated at the 0.5 % floor from three repeats, claimed at p = 2.5e-8). The
 //! repeats therefore update the default as a scaled-inverse-chi-square prior worth `PRIOR_DF`
-//! degrees of freedom, the moderated variance of Smyth 2004 (Stat. Appl. Genet. Mol. Biol. 3, art. 3,
-//! Eq 4): `s^2 = (d0 s0^2 + d s_rep^2) / (d0 + d)`. Many repeats outweigh the default; three move
-//! it part of the way.
+//! degrees of freedom, the moderated (posterior) variance of Smyth 2004 (Stat. Appl. Genet. Mol.
+//! Biol. 3, article 3): `s^2 = (d0 s0^2 + d s_rep^2) / (d0 + d)`. Many repeats outweigh the
+//! default; three move it part of the way.
 
 use cutcal_model::CuttingTest;
 
