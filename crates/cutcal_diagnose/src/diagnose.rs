@@ -138,15 +138,10 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         None
     };
     let alpha_k = calibration.as_ref().map_or(cfg.family_alpha / k_tested as f64, |c| c.alpha);
-    // First-round level of each mechanism (`crate::null`: the calibrated level over its null scale;
-    // Bonferroni without replicates).
-    let level0 = |id: MechanismId| calibration.as_ref().map_or(alpha_k, |c| c.level_of(id));
-    let alpha_later = calibration.as_ref().map_or(alpha_k, |c| c.later_rounds);
     let calibration_text = match &calibration {
         Some(c) => format!(
             "calibrated on {} null replicates from the fitted baseline through screen, refit and interval checks \
-             ({} failed, counted as claims); {} of them would claim at the family level {}; each mechanism's \
-             level is scaled by how often its own test gives p < 0.1 on them (min-P, Westfall & Young 1993)",
+             ({} failed, counted as claims); {} of them would claim at the family level {}",
             c.replicates, c.failed, c.claims_at_family_level, cfg.family_alpha
         ),
         None => {
@@ -194,15 +189,13 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 fit_notes.push(format!("refit with {}: {note}", c.id.as_str()));
             }
         }
-        // Significance, interval. The first round uses each mechanism's calibrated level (min-P,
-        // `crate::null`). Later rounds add a second or third mechanism on top of a claim, where the
-        // null scales were not measured: they take the unscaled calibrated level (the quantile of the
-        // replicates' smallest p) divided by 4 per round (a stated, conservative choice that keeps
-        // spurious additions rare).
-        let level =
-            |id: MechanismId| if round == 0 { level0(id) } else { alpha_later / f64::from(1u32 << (2 * round as u32)) };
+        // Significance, interval.
+        // Later rounds add a second or third mechanism on top of a claim: the calibrated level was
+        // set for the first claim, so each further round divides it by 4 (a stated, conservative
+        // choice that keeps spurious additions rare).
+        let alpha_round = alpha_k / f64::from(1u32 << (2 * round as u32));
         for c in &mut cands {
-            c.significant = c.p.is_finite() && c.p < level(c.id);
+            c.significant = c.p.is_finite() && c.p < alpha_round;
         }
         // A later round does not claim a confounder of a mechanism already claimed (either one
         // listed in the other's `confounders`): their signatures share directions, so what is
@@ -218,7 +211,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             let refused = |id: MechanismId| confounded_with(id).is_some();
             let current_pair = (&current_spec, &current);
             if let Some(l) =
-                heldout_round(&pr, &mut cands, &sig, current_pair, current_loco.as_ref(), &level, &refused)?
+                heldout_round(&pr, &mut cands, &sig, current_pair, current_loco.as_ref(), alpha_round, &refused)?
             {
                 nested_loco = Some(l);
             }
@@ -233,7 +226,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             c.reason = if !c.p.is_finite() {
                 "too few numbers to test it".into()
             } else if !c.significant {
-                format!("not significant (p = {:.2e} >= {:.4})", c.p, level(c.id))
+                format!("not significant (p = {:.2e} >= {:.4})", c.p, alpha_round)
             } else if let Some(why) = &c.conflict {
                 why.clone()
             } else if !c.ci_ok {
@@ -284,8 +277,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         // Instrument explanations compete with the best mechanism (`crate::instrument`).
         let stopped = best.is_some_and(|b| {
             let current_pair = (&current_spec, &current);
-            let at = level(cands[b].id);
-            stops_claim(&pr, current_pair, &mut cands, b, at, &mut notes)
+            stops_claim(&pr, current_pair, &mut cands, b, alpha_round, &mut notes)
         });
         if let Some(b) = best.filter(|_| !stopped) {
             let rivals: Vec<usize> = (0..cands.len())
@@ -420,8 +412,6 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         thresholds: Thresholds {
             family_alpha: cfg.family_alpha,
             per_mechanism_alpha: alpha_k,
-            later_rounds_alpha: alpha_later,
-            levels: usable.iter().map(|&m| (m.as_str().to_string(), level0(m))).collect(),
             mechanisms_tested: k_tested,
             ambiguity_cosine: cfg.ambiguity_cosine,
             ambiguity_delta_aicc: cfg.ambiguity_delta_aicc,

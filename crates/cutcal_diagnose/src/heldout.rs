@@ -14,7 +14,7 @@ use crate::stats;
 /// too few conditions to hold one out.
 ///
 /// Nested pipeline: inside each fold, the significance decision is re-run on the fold's fits (the
-/// round's `level` of each mechanism, the F-test of the refit) and the held-out condition is predicted
+/// round's level `alpha_round`, the F-test of the refit) and the held-out condition is predicted
 /// with the fold's choice, the smallest AICc of the whole objective among the significant ones.
 /// The fold chooses among the candidates that pass their own held-out check on the whole data and
 /// are not `refused` (as the decision does): a candidate that extrapolates badly cannot be chosen
@@ -26,7 +26,7 @@ pub(crate) fn heldout_round(
     sig: &[usize],
     current: (&Spec, &Fit),
     current_loco: Option<&Loco>,
-    level: &dyn Fn(MechanismId) -> f64,
+    alpha_round: f64,
     refused: &dyn Fn(MechanismId) -> bool,
 ) -> Result<Option<Loco>, DiagnoseError> {
     let mut specs: Vec<(&Spec, &[f64])> = vec![(current.0, current.1.x.as_slice())];
@@ -56,7 +56,7 @@ pub(crate) fn heldout_round(
             let d = f.k - fold[0].k;
             let p = f_test(nb, f.rss, tested_df(cands[i].id, d), n_tr, f.k, boundary_params(cands[i].id));
             let a = stats::aicc(f.objective(), n_tr, f.k + grid_chosen(cands[i].id));
-            if p < level(cands[i].id) && best.is_none_or(|(b, _)| a < b) {
+            if p < alpha_round && best.is_none_or(|(b, _)| a < b) {
                 best = Some((a, s + 1));
             }
         }

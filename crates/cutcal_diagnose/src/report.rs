@@ -168,15 +168,8 @@ pub struct GlobalMisfit {
 pub struct Thresholds {
     /// Family-wise false-positive rate aimed at.
     pub family_alpha: f64,
-    /// Significance level of a mechanism whose null p-values are uniform (calibrated on the null
-    /// replicates; Bonferroni without them).
+    /// Per-mechanism significance level (calibrated on the null replicates; Bonferroni without them).
     pub per_mechanism_alpha: f64,
-    /// First-round level of each mechanism tested: `per_mechanism_alpha` over the mechanism's null
-    /// scale, at most `family_alpha` (`crate::null`); later rounds use `later_rounds_alpha`.
-    pub levels: std::collections::BTreeMap<String, f64>,
-    /// Level of later rounds times 4 per round after the first (the replicates' smallest unscaled
-    /// p-value's quantile; the Bonferroni level without replicates).
-    pub later_rounds_alpha: f64,
     /// Number of mechanisms tested in the first round.
     pub mechanisms_tested: usize,
     /// Cosine above which two mechanisms' fitted corrections count as near-equivalent.
@@ -300,14 +293,10 @@ impl Report {
                 if m.tests.is_empty() { "-".to_string() } else { m.tests.join(", ") }
             );
         }
-        let levels: Vec<String> = self.thresholds.levels.iter().map(|(id, l)| format!("{id} {l:.2e}")).collect();
         let _ = writeln!(
             s,
-            "\nMechanisms refitted jointly with the baseline (first-round threshold p < {}; later rounds {:.2e} / 4 \
-             per round; {}):",
-            if levels.is_empty() { format!("{:.2e}", self.thresholds.per_mechanism_alpha) } else { levels.join(", ") },
-            self.thresholds.later_rounds_alpha,
-            self.calibration
+            "\nMechanisms refitted jointly with the baseline (threshold p < {:.2e} per mechanism; {}):",
+            self.thresholds.per_mechanism_alpha, self.calibration
         );
         for m in &self.mechanisms {
             let params = params_text(m);

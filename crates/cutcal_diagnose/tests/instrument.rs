@@ -22,8 +22,7 @@ fn a_force_drift_over_the_run_order_is_not_named_flank_wear() {
     assert!(report.selected.is_empty(), "{}", report.to_text());
     // Flank wear passes its own checks here; the drift competitor is what stops the claim.
     let wear = report.mechanisms.iter().find(|m| m.id == "flank_wear").expect("flank wear is refitted");
-    let level = report.thresholds.levels["flank_wear"];
-    assert!(wear.p_value.is_some_and(|p| p < level), "{}", report.to_text());
+    assert!(wear.p_value.is_some_and(|p| p < report.thresholds.per_mechanism_alpha), "{}", report.to_text());
     assert!(wear.reason.contains("drift of both force channels"), "{}", report.to_text());
     // The next test rules the instrument out first, then names the candidate it stopped.
     assert!(report.next_test.starts_with("check the force channels with dead weights"), "{}", report.next_test);

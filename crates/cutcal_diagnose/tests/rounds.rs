@@ -25,7 +25,7 @@ fn one_claimed_other_held_back(report: &cutcal_diagnose::Report, a: &str, b: &st
         .iter()
         .find(|m| m.id == other && m.reason.contains("confounded with"))
         .unwrap_or_else(|| panic!("{other} is held back as a confounder of {first}:\n{text}"));
-    assert!(held.p_value.is_some_and(|p| p < report.thresholds.later_rounds_alpha / 4.0), "{text}");
+    assert!(held.p_value.is_some_and(|p| p < report.thresholds.per_mechanism_alpha / 4.0), "{text}");
 }
 
 #[test]
