@@ -243,6 +243,25 @@ mod tests {
     }
 
     #[test]
+    fn no_refit_ends_worse_than_the_model_it_nests() {
+        // Every refit adds a mechanism to the current model, which it reproduces at the mechanism's
+        // off value, so no refit can explain less than nothing. On this pair (24 conditions), the
+        // heat-partition refit from its usual start once ended at "explains -106 %" (a worse basin
+        // of the nuisance); the rerun from the nested point (`screen::nested_floor`) removes that.
+        let r = diagnose_files(&args(
+            "fixtures/diagnose/nested_refit_recordings.csv",
+            Some("fixtures/diagnose/nested_refit_simulation.csv"),
+            None,
+            None,
+        ))
+        .unwrap();
+        assert!(r.mechanisms.iter().any(|m| m.id == "heat_partition"));
+        for m in &r.mechanisms {
+            assert!(m.explained_fraction > -1e-6, "{}: explains {}", m.id, m.explained_fraction);
+        }
+    }
+
+    #[test]
     fn a_candidate_that_fails_only_the_held_out_check_asks_for_more_conditions() {
         // Five conditions (a benchmark pair with a hidden heat partition): the misfit is real and
         // mechanisms fit it significantly, but with one condition held out none predicts it better,
