@@ -37,6 +37,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
+pub use material::NuisanceScope;
 use mechanism::{DECOYS, MECHANISMS};
 use score::Outcome;
 
@@ -59,6 +60,8 @@ pub struct ConcealedOptions {
     pub material: Option<String>,
     /// Generate the data and the sealed truth only (no diagnosis, no outcomes, scores or page).
     pub generate_only: bool,
+    /// Which constants each dataset's nuisance perturbs (the headline: `Full`).
+    pub nuisance: material::NuisanceScope,
 }
 
 /// A generator family: `a` (Oxley; the detector may be tuned on it), `b` (Merchant closure, Zorev
@@ -198,7 +201,7 @@ fn one(
         seconds: 0.0,
     };
     let material = opts.material.as_deref().and_then(material::by_name);
-    let ds = match dataset::generate(family, index, hidden, rank, opts.seed, material) {
+    let ds = match dataset::generate(family, index, hidden, rank, opts.seed, material, opts.nuisance) {
         Ok(d) => d,
         Err(e) => {
             o.reason = e;
@@ -279,6 +282,9 @@ pub fn run(opts: &ConcealedOptions) -> Result<()> {
     if opts.datasets == 0 {
         bail!("--datasets must be at least 1");
     }
+    if opts.nuisance != NuisanceScope::Full && opts.markdown.is_some() {
+        bail!("--markdown: the page describes the full nuisance; a `--nuisance eta-psi` run writes its summary only");
+    }
     if let Some(m) = opts.material.as_deref() {
         if material::by_name(m).is_none() {
             bail!("--material: no material named `{m}` (AISI1045, AISI4340, Ti6Al4V, AA2024-T351, OFHC-Cu, Nickel200)");
@@ -357,7 +363,7 @@ mod tests {
         let p = Path::new("t.csv");
         for fam in [Family::A, Family::B, Family::C] {
             for (i, hidden) in ["null", "edge_ploughing", "size_effect", "decoy:gain"].iter().enumerate() {
-                let d = dataset::generate(fam, i, hidden, 0, 11, None).unwrap();
+                let d = dataset::generate(fam, i, hidden, 0, 11, None, material::NuisanceScope::Full).unwrap();
                 // The CLI's readers accept both files.
                 let tests = cutcal_io::tests_csv::parse_tests(p, &d.recordings).unwrap();
                 let sims = cutcal_io::simulation_csv::parse_simulation(p, &d.simulation).unwrap();

@@ -60,6 +60,11 @@ pub struct ConcealedFlags {
     /// outcomes, scores or page; a generation summary on stderr.
     #[arg(long)]
     pub generate_only: bool,
+    /// Which constants each dataset's nuisance perturbs: `full` (eta and psi +-3 %, thermal
+    /// constants and JC +-5 %; the benchmark's figures) or `eta-psi` (eta and psi +-3 % only, the
+    /// nuisance the issue states for its own independent suite; a check, not the headline).
+    #[arg(long, default_value = "full")]
+    pub nuisance: String,
 }
 
 /// Options of `cargo xtask pipeline`.

@@ -29,7 +29,9 @@ fn main() -> ExitCode {
         flags::Task::Pipeline(f) => pipeline::run(&f),
         flags::Task::Signals(f) => signals::run(&f.out),
         flags::Task::Concealed(f) => {
-            concealed::Family::parse_list(&f.family).map_err(anyhow::Error::msg).and_then(|families| {
+            let parsed = concealed::Family::parse_list(&f.family)
+                .and_then(|fams| concealed::NuisanceScope::parse(&f.nuisance).map(|n| (fams, n)));
+            parsed.map_err(anyhow::Error::msg).and_then(|(families, nuisance)| {
                 concealed::run(&concealed::ConcealedOptions {
                     families,
                     datasets: f.datasets,
@@ -39,6 +41,7 @@ fn main() -> ExitCode {
                     threads: f.threads,
                     material: f.material,
                     generate_only: f.generate_only,
+                    nuisance,
                 })
             })
         }

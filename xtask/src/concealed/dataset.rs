@@ -19,7 +19,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 
 use super::forms_d::{self, ShapeD};
-use super::material::{Cond, Consts, Material, Solution, MATERIALS};
+use super::material::{Cond, Consts, Material, NuisanceScope, Solution, MATERIALS};
 use super::mechanism::{self, Mods, Shape};
 use super::{detectable, energy, merchant, oxley, Family};
 
@@ -204,7 +204,7 @@ pub fn enr(with: &[[f64; 4]], without: &[[f64; 4]], noise: &[f64; 4], outs: usiz
 /// same kind (sets the target ENR).
 ///
 /// `material` forces the work material (the material-spread check); `None` draws it from
-/// [`MATERIALS`].
+/// [`MATERIALS`]. `nuisance` says which constants the dataset's nuisance perturbs.
 pub fn generate(
     family: Family,
     index: usize,
@@ -212,6 +212,7 @@ pub fn generate(
     rank: usize,
     seed: u64,
     material: Option<&'static Material>,
+    nuisance: NuisanceScope,
 ) -> Result<Dataset, String> {
     let mut rng =
         ChaCha8Rng::seed_from_u64(seed ^ (index as u64 + family.stream()).wrapping_mul(0x9E37_79B9_7F4A_7C15));
@@ -220,7 +221,7 @@ pub fn generate(
     let d = design(&mut rng, mat, hidden == "built_up_edge");
     let n = d.conds.len();
     let nominal = Consts::nominal(mat);
-    let truth_k = nominal.perturbed(&mut rng);
+    let truth_k = nominal.perturbed(&mut rng, nuisance);
     let shape = Shape::draw(&mut rng);
     let shape_d = (family == Family::D).then(|| ShapeD::draw(&mut rng));
     let noise =

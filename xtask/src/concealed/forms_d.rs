@@ -415,7 +415,7 @@ mod tests {
     fn family_d_generates_and_hits_its_targets() {
         let p = std::path::Path::new("t.csv");
         for (i, hidden) in MECHANISMS.iter().chain(["null", "decoy:drift"].iter()).enumerate() {
-            let d = dataset::generate(Family::D, i, hidden, 0, 5, None).unwrap();
+            let d = dataset::generate(Family::D, i, hidden, 0, 5, None, crate::concealed::NuisanceScope::Full).unwrap();
             let tests = cutcal_io::tests_csv::parse_tests(p, &d.recordings).unwrap();
             assert_eq!(tests.len(), d.truth.conditions);
             assert!(d.truth.shape_d.is_some() && d.truth.family == "d");
