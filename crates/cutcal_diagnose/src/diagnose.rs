@@ -236,7 +236,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                     (Some(a), Some(b)) if a.rss < b && nested_ok => {
                         "passes significance, interval and held-out checks".into()
                     }
-                    (Some(_), Some(_)) => "does not improve held-out prediction".into(),
+                    (Some(a), Some(b)) => crate::heldout::failure_reason(a.rss, b, nested_loco.as_ref().map(|l| l.rss)),
                     _ => "held-out validation impossible with fewer than 3 conditions".into(),
                 }
             };

@@ -65,3 +65,39 @@ pub(crate) fn heldout_round(
     let rss = resid.iter().map(|r| r * r).sum();
     Ok(Some(Loco { resid, rss }))
 }
+
+/// The reason a significant candidate fails the held-out check, with the numbers it was judged on.
+/// The check is on the leave-one-condition-out residuals weighted by the measurement noise (the
+/// likelihood's own weights), so a per-cent RMS over the outputs (the report's `held-out RMS`, which
+/// weighs every output alike) can fall while the check fails.
+pub(crate) fn failure_reason(own_rss: f64, before_rss: f64, nested_rss: Option<f64>) -> String {
+    const HEAD: &str = "does not improve held-out prediction";
+    if own_rss >= before_rss {
+        format!(
+            "{HEAD}: its leave-one-condition-out sum of squares in noise units is {own_rss:.1} against \
+             {before_rss:.1} without it (the per-cent RMS weighs the outputs alike, this check by their noise)"
+        )
+    } else {
+        let nested = nested_rss.map_or_else(|| "not available".to_string(), |r| format!("{r:.1}"));
+        format!(
+            "{HEAD}: its own leave-one-condition-out sum of squares falls ({own_rss:.1} against {before_rss:.1}), \
+             but the selection made again without each condition predicts the left-out ones no better \
+             ({nested} against {before_rss:.1})"
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_failure_reason_names_which_check_failed_with_its_numbers() {
+        let own = failure_reason(465.0, 420.0, Some(430.0));
+        assert!(own.starts_with("does not improve held-out prediction: its leave-one-condition-out"), "{own}");
+        assert!(own.contains("465.0 against 420.0"), "{own}");
+        let nested = failure_reason(400.0, 420.0, Some(430.0));
+        assert!(nested.contains("falls (400.0 against 420.0)") && nested.contains("(430.0 against 420.0)"), "{nested}");
+        assert!(failure_reason(400.0, 420.0, None).contains("(not available against 420.0)"));
+    }
+}
