@@ -151,8 +151,7 @@ pub(crate) fn screen_and_refit(
             let inf = info(m);
             let d = fit::fitted_len(m);
             let mut s = DMatrix::zeros(n, d);
-            let mut x = current.x.clone();
-            x.extend(inf.params.iter().take(d).map(|p| p.off));
+            let x = nested_point(&current.x, m);
             let p0 = match fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &x) {
                 Ok(p0) => p0,
                 Err(e) => {
@@ -363,13 +362,18 @@ fn nested_floor(pr: &Problem<'_>, s: &Screened, current: &Fit, f: Fit) -> Fit {
     if f.objective() <= current.objective() + tolerance {
         return f;
     }
-    let inf = info(s.id);
-    let mut x_off = current.x.clone();
-    x_off.extend(inf.params.iter().take(fit::fitted_len(s.id)).map(|p| p.off));
-    match pr.fit(&s.spec, Some(&x_off)) {
+    match pr.fit(&s.spec, Some(&nested_point(&current.x, s.id))) {
         Ok(g) if g.objective() < f.objective() && !matches!(g.status, fit::FitStatus::Underdetermined) => g,
         _ => f,
     }
+}
+
+/// The current parameters `x` followed by mechanism `id`'s fitted parameters at their off values:
+/// the point at which the model with `id` added reproduces the current model.
+fn nested_point(x: &[f64], id: MechanismId) -> Vec<f64> {
+    let mut out = x.to_vec();
+    out.extend(info(id).params.iter().take(fit::fitted_len(id)).map(|p| p.off));
+    out
 }
 
 /// `Some(v)` for a finite number, `None` otherwise (reports never carry NaN or inf).
