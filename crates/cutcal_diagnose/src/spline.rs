@@ -14,6 +14,7 @@ pub struct Table {
     u: Vec<f64>,
     y: Vec<[f64; WIDTH]>,
     slope: Vec<[f64; WIDTH]>,
+    off: f64,
     at_off: [f64; WIDTH],
 }
 
@@ -39,7 +40,7 @@ impl Table {
         let u: Vec<f64> = nodes[lo..=hi].to_vec();
         let y: Vec<[f64; WIDTH]> = values[lo..=hi].iter().map(|v| v.unwrap_or([0.0; WIDTH])).collect();
         let slope = fritsch_carlson(&u, &y);
-        let mut t = Self { u, y, slope, at_off: [0.0; WIDTH] };
+        let mut t = Self { u, y, slope, off, at_off: [0.0; WIDTH] };
         t.at_off = t.at(off);
         Ok(t)
     }
@@ -73,9 +74,18 @@ impl Table {
         out
     }
 
-    /// `at(v) - at(off)`.
+    /// `at(off)`, kept from construction.
+    #[must_use]
+    pub fn at_off(&self) -> [f64; WIDTH] {
+        self.at_off
+    }
+
+    /// `at(v) - at(off)`; exactly zero at the off value itself, without interpolating.
     #[must_use]
     pub fn delta(&self, v: f64) -> [f64; WIDTH] {
+        if v.to_bits() == self.off.to_bits() {
+            return [0.0; WIDTH];
+        }
         let a = self.at(v);
         let mut d = [0.0; WIDTH];
         for j in 0..WIDTH {

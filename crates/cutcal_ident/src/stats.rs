@@ -200,9 +200,13 @@ pub fn f_sf(f: f64, d1: f64, d2: f64) -> f64 {
 /// Two-sided `1 - alpha` quantile of Student t: the `t` with `P(|T| > t) = alpha` (bisection).
 #[must_use]
 pub fn t_quantile_two_sided(alpha: f64, df: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0, 1e3);
+    let (mut lo, mut hi) = (0.0_f64, 1e3_f64);
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
+        // Once the bracket is two adjacent floats the midpoint is one of them: nothing moves.
+        if mid.to_bits() == lo.to_bits() || mid.to_bits() == hi.to_bits() {
+            break;
+        }
         if t_two_sided_p(mid, df) > alpha {
             lo = mid;
         } else {

@@ -23,6 +23,7 @@
 mod fitted;
 mod globals;
 mod knobs;
+mod memo;
 
 use cutcal_model::{CuttingTest, JcParams, Material};
 
@@ -90,7 +91,12 @@ pub struct ShadowSimulation {
     /// `tables[i][k]`: test i, knob k (order of `KNOBS`); `None` when the shadow has no solution.
     tables: Vec<Option<Vec<Table>>>,
     params: Vec<ParamSpec>,
+    /// Whether `params` opens with the free flow-stress level.
+    level_free: bool,
     summary: ShadowSummary,
+    /// Identity for the per-thread memo of knob deltas (`memo`); the tables never change after
+    /// tabulation, so a clone may share it.
+    memo_id: u64,
 }
 
 impl ShadowSimulation {
@@ -133,7 +139,15 @@ impl ShadowSimulation {
             .collect();
         // Nuisance bounded by what its stated uncertainty produces (`crate::nuisance`).
         let params = crate::nuisance::mode_a_params(level_free);
-        Self { ids: tests.iter().map(|t| t.id.clone()).collect(), external: external.to_vec(), tables, params, summary }
+        Self {
+            ids: tests.iter().map(|t| t.id.clone()).collect(),
+            external: external.to_vec(),
+            tables,
+            params,
+            level_free,
+            summary,
+            memo_id: memo::next_id(),
+        }
     }
 
     /// What the shadow fit found.
@@ -144,9 +158,8 @@ impl ShadowSimulation {
 
     /// Knob coordinates of test hooks `h` at baseline `theta`, in the order of `KNOBS`.
     fn coordinates(&self, theta: &[f64], h: &Hooks) -> [f64; 12] {
-        let level_free = self.params.first().is_some_and(|p| p.name == "ln_flow_stress_level");
-        let o = usize::from(level_free);
-        let level = if level_free { theta.first().copied().unwrap_or(0.0) } else { 0.0 };
+        let o = usize::from(self.level_free);
+        let level = if self.level_free { theta.first().copied().unwrap_or(0.0) } else { 0.0 };
         let nuis = |k: usize, def: f64| theta.get(o + k).copied().unwrap_or(def);
         [
             h.friction_factor,
@@ -181,37 +194,48 @@ impl Simulator for ShadowSimulation {
         theta: &[f64],
         hooks: &[Hooks],
     ) -> Result<Vec<Prediction>, DiagnoseError> {
-        tests
-            .iter()
-            .zip(hooks)
-            .map(|(t, h)| {
-                let i = self.ids.iter().position(|id| *id == t.id).ok_or_else(|| {
-                    DiagnoseError::Inconsistent(format!(
-                        "test `{}` is in the recordings but not in the simulation",
-                        t.id
-                    ))
-                })?;
-                let e = self.external[i];
-                let Some(tabs) = &self.tables[i] else { return Ok(e) };
-                let u = self.coordinates(theta, h);
-                let mut d = [0.0; 5];
-                for (tab, &uk) in tabs.iter().zip(&u) {
-                    let dv = tab.delta(uk);
-                    for j in 0..5 {
-                        d[j] += dv[j];
+        let slots = self.tables.len() * knobs::KNOBS.len();
+        memo::with_memo(self.memo_id, slots, |memo| {
+            tests
+                .iter()
+                .zip(hooks)
+                .enumerate()
+                .map(|(j, (t, h))| {
+                    // The tests usually come in the simulation's own order (a held-out fold drops
+                    // some): look there first, then search.
+                    let i = if self.ids.get(j).is_some_and(|id| *id == t.id) {
+                        j
+                    } else {
+                        self.ids.iter().position(|id| *id == t.id).ok_or_else(|| {
+                            DiagnoseError::Inconsistent(format!(
+                                "test `{}` is in the recordings but not in the simulation",
+                                t.id
+                            ))
+                        })?
+                    };
+                    let e = self.external[i];
+                    let Some(tabs) = &self.tables[i] else { return Ok(e) };
+                    let u = self.coordinates(theta, h);
+                    let mut d = [0.0; 5];
+                    for (k, (tab, &uk)) in tabs.iter().zip(&u).enumerate() {
+                        let dv = memo.delta(i * knobs::KNOBS.len() + k, tab, uk);
+                        for j in 0..5 {
+                            d[j] += dv[j];
+                        }
                     }
-                }
-                let base = tabs[4].at(0.0);
-                Ok(Prediction {
-                    fc_n_per_m: e.fc_n_per_m * d[0].exp(),
-                    ft_n_per_m: e.ft_n_per_m * d[1].exp(),
-                    chip_m: e.chip_m * d[2].exp(),
-                    t_ab_c: Some(e.t_ab_c.unwrap_or(base[3]) + d[3]),
-                    t_int_c: Some(e.t_int_c.unwrap_or(base[4]) + d[4]),
-                    beta: e.beta,
+                    // The flow-stress level's off value is 0: its table's value there is the shadow's own.
+                    let base = tabs[4].at_off();
+                    Ok(Prediction {
+                        fc_n_per_m: e.fc_n_per_m * d[0].exp(),
+                        ft_n_per_m: e.ft_n_per_m * d[1].exp(),
+                        chip_m: e.chip_m * d[2].exp(),
+                        t_ab_c: Some(e.t_ab_c.unwrap_or(base[3]) + d[3]),
+                        t_int_c: Some(e.t_int_c.unwrap_or(base[4]) + d[4]),
+                        beta: e.beta,
+                    })
                 })
-            })
-            .collect()
+                .collect()
+        })
     }
 }
 
