@@ -152,9 +152,20 @@ impl Problem for FitProblem<'_> {
     /// needs the Jacobian to first order). The step is 1e-6 of the bound width, taken inward at the
     /// upper bound.
     fn jacobian(&self, p: &DVector<f64>, bounds: &Bounds, out: &mut DMatrix<f64>) -> Result<(), IdentError> {
-        let m = self.residual_count();
-        let mut r0 = DVector::zeros(m);
+        let mut r0 = DVector::zeros(self.residual_count());
         self.residuals(p, &mut r0)?;
+        self.jacobian_at(p, &r0, bounds, out)
+    }
+    /// The forward differences of [`Self::jacobian`] from the residuals `r0` at `p` that the
+    /// minimiser already holds.
+    fn jacobian_at(
+        &self,
+        p: &DVector<f64>,
+        r0: &DVector<f64>,
+        bounds: &Bounds,
+        out: &mut DMatrix<f64>,
+    ) -> Result<(), IdentError> {
+        let m = self.residual_count();
         let mut rp = DVector::zeros(m);
         for k in 0..self.parameter_count() {
             let h = 1e-6 * (bounds.upper[k] - bounds.lower[k]).max(p[k].abs() * 1e-3).max(1e-12);

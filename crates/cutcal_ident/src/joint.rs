@@ -187,10 +187,22 @@ impl Problem for JointOxleyProblem<'_> {
     /// Forward differences (one forward solve set per parameter, half the cost of central ones);
     /// the step is 1e-5 of the bound width, taken inward at the upper bound.
     fn jacobian(&self, p: &DVector<f64>, bounds: &Bounds, out: &mut DMatrix<f64>) -> Result<(), IdentError> {
-        let m = self.residual_count();
-        let mut r0 = DVector::zeros(m);
-        let mut r1 = DVector::zeros(m);
+        let mut r0 = DVector::zeros(self.residual_count());
         self.residuals(p, &mut r0)?;
+        self.jacobian_at(p, &r0, bounds, out)
+    }
+
+    /// The forward differences of [`Self::jacobian`] from the residuals `r0` at `p` that the
+    /// minimiser already holds (one forward solve set per parameter, and none at `p` itself).
+    fn jacobian_at(
+        &self,
+        p: &DVector<f64>,
+        r0: &DVector<f64>,
+        bounds: &Bounds,
+        out: &mut DMatrix<f64>,
+    ) -> Result<(), IdentError> {
+        let m = self.residual_count();
+        let mut r1 = DVector::zeros(m);
         for k in 0..5 {
             let width = bounds.upper[k] - bounds.lower[k];
             if width <= 0.0 {

@@ -41,6 +41,20 @@ pub trait Problem {
         }
         Ok(())
     }
+    /// Jacobian at `p` when the caller already holds the residuals `r` at `p` (the minimiser does:
+    /// it evaluated them when it accepted the step). The default ignores `r` and calls
+    /// [`Problem::jacobian`]; a forward-difference problem overrides it to take `r` as its base
+    /// point instead of evaluating the model there again, with the same result bit for bit.
+    fn jacobian_at(
+        &self,
+        p: &DVector<f64>,
+        r: &DVector<f64>,
+        bounds: &Bounds,
+        out: &mut DMatrix<f64>,
+    ) -> Result<(), IdentError> {
+        let _ = r;
+        self.jacobian(p, bounds, out)
+    }
 }
 
 /// Box bounds `lower <= p <= upper` (a parameter with `lower == upper` is fixed).
@@ -257,7 +271,7 @@ pub fn minimise_until<P: Problem + ?Sized>(
     let mut iterations = 0;
     'outer: for it in 1..=options.max_iterations {
         iterations = it;
-        problem.jacobian(&p, bounds, &mut jac)?;
+        problem.jacobian_at(&p, &r, bounds, &mut jac)?;
         if jac.iter().any(|v| !v.is_finite()) {
             return Err(IdentError::NonFinite { what: "Jacobian".into(), params: p.iter().copied().collect() });
         }
