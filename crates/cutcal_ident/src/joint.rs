@@ -184,16 +184,14 @@ impl Problem for JointOxleyProblem<'_> {
         Ok(())
     }
 
-    /// Forward differences (one forward solve set per parameter, half the cost of central ones);
-    /// the step is 1e-5 of the bound width, taken inward at the upper bound.
     fn jacobian(&self, p: &DVector<f64>, bounds: &Bounds, out: &mut DMatrix<f64>) -> Result<(), IdentError> {
         let mut r0 = DVector::zeros(self.residual_count());
         self.residuals(p, &mut r0)?;
         self.jacobian_at(p, &r0, bounds, out)
     }
 
-    /// The forward differences of [`Self::jacobian`] from the residuals `r0` at `p` that the
-    /// minimiser already holds (one forward solve set per parameter, and none at `p` itself).
+    /// Forward differences from the residuals `r0` at `p` (one forward solve set per parameter,
+    /// half the cost of central ones); the step is 1e-5 of the bound width, inward at the upper bound.
     fn jacobian_at(
         &self,
         p: &DVector<f64>,

@@ -65,3 +65,58 @@ fn rejects_inverted_bounds() {
     assert!(Bounds::new(vec!["x".into()], vec![1.0], vec![0.0]).is_err());
     assert!(Bounds::new(vec!["x".into()], vec![f64::NAN], vec![0.0]).is_err());
 }
+
+/// Rosenbrock with forward differences taken from the residuals the minimiser hands over; it
+/// counts the calls and the hand-overs that differ from a fresh evaluation at the same point.
+struct HandOver {
+    calls: std::cell::Cell<usize>,
+    stale: std::cell::Cell<usize>,
+}
+impl Problem for HandOver {
+    fn parameter_count(&self) -> usize {
+        2
+    }
+    fn residual_count(&self) -> usize {
+        2
+    }
+    fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
+        Rosen.residuals(p, out)
+    }
+    fn jacobian_at(
+        &self,
+        p: &DVector<f64>,
+        r: &DVector<f64>,
+        _b: &Bounds,
+        out: &mut DMatrix<f64>,
+    ) -> Result<(), IdentError> {
+        let mut fresh = DVector::zeros(2);
+        self.residuals(p, &mut fresh)?;
+        self.calls.set(self.calls.get() + 1);
+        if fresh.iter().zip(r.iter()).any(|(a, b)| a.to_bits() != b.to_bits()) {
+            self.stale.set(self.stale.get() + 1);
+        }
+        let mut q = p.clone();
+        let mut rq = DVector::zeros(2);
+        for k in 0..2 {
+            q[k] = p[k] + 1e-7;
+            self.residuals(&q, &mut rq)?;
+            q[k] = p[k];
+            for i in 0..2 {
+                out[(i, k)] = (rq[i] - r[i]) / 1e-7;
+            }
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn the_minimiser_hands_over_the_residuals_at_the_jacobian_s_own_point() {
+    // `jacobian_at` may take `r` as its base point only if it is exactly r(p): after the start,
+    // after accepted steps and after rejected ones (which leave p and r as they were).
+    let b = Bounds::new(vec!["x".into(), "y".into()], vec![-2.0, -1.0], vec![2.0, 3.0]).unwrap();
+    let pr = HandOver { calls: 0.into(), stale: 0.into() };
+    let r = minimise(&pr, &b, &DVector::from_vec(vec![-1.2, 1.0]), &LmOptions::precise()).unwrap();
+    assert!((r.params[0] - 1.0).abs() < 1e-6 && (r.params[1] - 1.0).abs() < 1e-6, "{:?}", r.params);
+    assert!(pr.calls.get() > 5, "{} Jacobians", pr.calls.get());
+    assert_eq!(pr.stale.get(), 0);
+}
