@@ -93,6 +93,9 @@ pub struct ShadowSimulation {
     params: Vec<ParamSpec>,
     /// Whether `params` opens with the free flow-stress level.
     level_free: bool,
+    /// Whether every id in `ids` is distinct (then a test found at its own position is the one
+    /// a search would find).
+    ids_distinct: bool,
     summary: ShadowSummary,
     /// Identity for the per-thread memo of knob deltas (`memo`); the tables never change after
     /// tabulation, so a clone may share it.
@@ -139,8 +142,11 @@ impl ShadowSimulation {
             .collect();
         // Nuisance bounded by what its stated uncertainty produces (`crate::nuisance`).
         let params = crate::nuisance::mode_a_params(level_free);
+        let ids: Vec<String> = tests.iter().map(|t| t.id.clone()).collect();
+        let ids_distinct = ids.iter().collect::<std::collections::HashSet<_>>().len() == ids.len();
         Self {
-            ids: tests.iter().map(|t| t.id.clone()).collect(),
+            ids,
+            ids_distinct,
             external: external.to_vec(),
             tables,
             params,
@@ -202,8 +208,8 @@ impl Simulator for ShadowSimulation {
                 .enumerate()
                 .map(|(j, (t, h))| {
                     // The tests usually come in the simulation's own order (a held-out fold drops
-                    // some): look there first, then search.
-                    let i = if self.ids.get(j).is_some_and(|id| *id == t.id) {
+                    // some): look there first, then search (the first match, as ever).
+                    let i = if self.ids_distinct && self.ids.get(j).is_some_and(|id| *id == t.id) {
                         j
                     } else {
                         self.ids.iter().position(|id| *id == t.id).ok_or_else(|| {
