@@ -152,9 +152,7 @@ impl Problem for FitProblem<'_> {
     /// needs the Jacobian to first order). The step is 1e-6 of the bound width, taken inward at the
     /// upper bound.
     fn jacobian(&self, p: &DVector<f64>, bounds: &Bounds, out: &mut DMatrix<f64>) -> Result<(), IdentError> {
-        let mut r0 = DVector::zeros(self.residual_count());
-        self.residuals(p, &mut r0)?;
-        self.jacobian_at(p, &r0, bounds, out)
+        cutcal_ident::lm::jacobian_with_fresh_base(self, p, bounds, out)
     }
     /// The forward differences of [`Self::jacobian`] from the residuals `r0` at `p` that the
     /// minimiser already holds.

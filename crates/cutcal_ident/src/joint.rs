@@ -185,9 +185,7 @@ impl Problem for JointOxleyProblem<'_> {
     }
 
     fn jacobian(&self, p: &DVector<f64>, bounds: &Bounds, out: &mut DMatrix<f64>) -> Result<(), IdentError> {
-        let mut r0 = DVector::zeros(self.residual_count());
-        self.residuals(p, &mut r0)?;
-        self.jacobian_at(p, &r0, bounds, out)
+        crate::lm::jacobian_with_fresh_base(self, p, bounds, out)
     }
 
     /// Forward differences from the residuals `r0` at `p` (one forward solve set per parameter,

@@ -57,6 +57,21 @@ pub trait Problem {
     }
 }
 
+/// [`Problem::jacobian_at`] from residuals evaluated afresh at `p`: the `jacobian` of a problem
+/// whose forward differences live in `jacobian_at`, for callers that hold no residuals at `p`.
+///
+/// Returns an error if the model fails at `p` or in the differences.
+pub fn jacobian_with_fresh_base<P: Problem + ?Sized>(
+    problem: &P,
+    p: &DVector<f64>,
+    bounds: &Bounds,
+    out: &mut DMatrix<f64>,
+) -> Result<(), IdentError> {
+    let mut r = DVector::zeros(problem.residual_count());
+    problem.residuals(p, &mut r)?;
+    problem.jacobian_at(p, &r, bounds, out)
+}
+
 /// Box bounds `lower <= p <= upper` (a parameter with `lower == upper` is fixed).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Bounds {
