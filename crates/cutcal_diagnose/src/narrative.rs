@@ -249,7 +249,16 @@ pub(crate) fn explain(
                 ));
             }
             if let (Some(b), Some(a)) = (&fit.before.loco, &fit.after.loco) {
-                s.push_str(&format!("Held-out error falls from {:.1} % to {:.1} % RMS. ", b.all, a.all));
+                // The held-out check weighs each output by its noise (`crate::heldout`); the per-cent
+                // RMS over the outputs does not, and can rise where the check passed.
+                if a.all < b.all {
+                    s.push_str(&format!("Held-out error falls from {:.1} % to {:.1} % RMS. ", b.all, a.all));
+                } else {
+                    s.push_str(&format!(
+                        "Held-out error in noise units falls, but its per-cent RMS over the outputs, unweighted, does not ({:.1} % before, {:.1} % after): the gain is in the outputs measured with the least scatter. ",
+                        b.all, a.all
+                    ));
+                }
             }
         }
         Verdict::Ambiguous => {
@@ -302,5 +311,23 @@ mod tests {
         let quiet = GlobalMisfit { chi2: 30.0, dof: 36, p_value: 0.75 };
         let text = explain(Verdict::None, &[], &[], &[], &[], &summary(), 14, &quiet);
         assert!(text.contains("agree within"), "{text}");
+    }
+
+    /// A claim whose held-out check passed in noise units while the unweighted per-cent RMS rose
+    /// (OxleyPython null 91 of seed 3, thirtieth session: 3.6 % -> 3.8 %) must not read as a fall.
+    #[test]
+    fn a_held_out_rms_that_rises_is_not_called_a_fall() {
+        let global = GlobalMisfit { chi2: 120.0, dof: 18, p_value: 1e-16 };
+        let mut fit = summary();
+        let up = |all| OutputRms { fc: Some(2.0), ft: Some(3.0), tc: Some(5.0), t_int: None, all };
+        fit.before.loco = Some(up(3.6));
+        fit.after.loco = Some(up(3.8));
+        let id = [MechanismId::SizeEffect];
+        let text = explain(Verdict::MissingPhysics, &[], &id, &[], &[], &fit, 7, &global);
+        assert!(!text.contains("falls from 3.6 % to 3.8 %"), "{text}");
+        assert!(text.contains("3.6 % before, 3.8 % after"), "{text}");
+        fit.after.loco = Some(up(2.9));
+        let text = explain(Verdict::MissingPhysics, &[], &id, &[], &[], &fit, 7, &global);
+        assert!(text.contains("Held-out error falls from 3.6 % to 2.9 % RMS"), "{text}");
     }
 }
