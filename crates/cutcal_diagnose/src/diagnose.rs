@@ -272,7 +272,15 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                     && confounded_with(c.id).is_none()
             })
             .collect();
-        let best = eligible.iter().copied().min_by(|&a, &b| cands[a].daicc.total_cmp(&cands[b].daicc));
+        let mut best = eligible.iter().copied().min_by(|&a, &b| cands[a].daicc.total_cmp(&cands[b].daicc));
+        if let Some((b, h)) = best.and_then(|b| crate::verdict::outdone_by_held_back(&cands, b).map(|h| (b, h))) {
+            let (held, daicc) = (cands[h].id.as_str(), cands[h].daicc);
+            cands[b].reason = format!(
+                "not claimed: {held}, held back as a confounder of an earlier claim, explains the remaining misfit better (dAICc {daicc:.1} against {:.1}), so what remains is more likely that claim's own form",
+                cands[b].daicc
+            );
+            best = None;
+        }
         let mut chosen = None;
         // Instrument explanations compete with the best mechanism (`crate::instrument`).
         let stopped = best.is_some_and(|b| {

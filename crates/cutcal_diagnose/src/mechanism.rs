@@ -149,7 +149,8 @@ pub fn set_hooks(
                 }
             }
             MechanismId::FlankWear => {
-                h.wear_land_m += phi[0] * 1e-3 * ctx.wear_state.as_ref().map_or(0.0, |w| w[i]);
+                let w0 = phi.get(1).copied().unwrap_or(0.0);
+                h.wear_land_m += phi[0] * 1e-3 * ctx.wear_state.as_ref().map_or(0.0, |w| w0 + (1.0 - w0) * w[i]);
             }
             MechanismId::ToolChipFriction => {
                 h.friction_factor *= friction_factor(phi[0], phi[1], t.speed_m_per_s * 60.0, ctx.friction_v_ref_m_min)
@@ -366,6 +367,10 @@ mod tests {
         // Order 1 and 4 of max 4: VB 0.05 and 0.2 mm for vb = 0.2 mm.
         set_hooks(MechanismId::FlankWear, &[0.2], &tests, &ctx, &sim, &mut hooks);
         assert!((hooks[0].wear_land_m - 0.05e-3).abs() < 1e-12 && (hooks[1].wear_land_m - 0.2e-3).abs() < 1e-12);
+        // A running-in share w_0 = 0.4: VB = 0.2 (0.4 + 0.6 state) mm, 0.11 and 0.2 mm.
+        let mut hooks = [Hooks::NEUTRAL; 2];
+        set_hooks(MechanismId::FlankWear, &[0.2, 0.4], &tests, &ctx, &sim, &mut hooks);
+        assert!((hooks[0].wear_land_m - 0.11e-3).abs() < 1e-12 && (hooks[1].wear_land_m - 0.2e-3).abs() < 1e-12);
     }
 
     #[test]

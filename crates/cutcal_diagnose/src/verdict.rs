@@ -8,6 +8,16 @@ use crate::mechanism::{info, MechanismId};
 use crate::problem::Candidate;
 use crate::report::{GlobalMisfit, Mismatch, Verdict};
 
+/// A later round's best candidate `best` is not claimed when a mechanism held back in the same round
+/// as a confounder of an earlier claim explains the remaining misfit better (lower AICc): what
+/// remains is then more likely the earlier claim's own form than a further mechanism, the reason the
+/// confounder was held back. Returns that confounder.
+pub(crate) fn outdone_by_held_back(cands: &[Candidate], best: usize) -> Option<usize> {
+    (0..cands.len())
+        .filter(|&i| cands[i].reason.starts_with("confounded with") && cands[i].daicc < cands[best].daicc)
+        .min_by(|&a, &b| cands[a].daicc.total_cmp(&cands[b].daicc))
+}
+
 /// The verdict from the accepted mechanisms, the round-0 ambiguity list (extended here when there
 /// is no held-out check), whether held-out validation was possible (`validated`), the global and
 /// per-output misfits of the baseline `base` (residuals on `obs`) and the first round's candidates.

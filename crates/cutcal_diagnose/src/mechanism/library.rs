@@ -34,10 +34,15 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             id,
             title: "flank wear land contact",
             source: "Smithey, Kapoor & DeVor 2001 wear-land model (cutcal_model::oxley::edge); design note M3",
-            // VB at the most worn test; VB_i = VB x wear state (measured VB / max, else order / max).
-            params: vec![p("vb", "mm", 0.0, 0.4, 0.0, 0.1)],
+            // VB at the most worn test; VB_i = VB (w_0 + (1 - w_0) x wear state), the wear state
+            // measured VB / max, else order / max. w_0 (at most 0.5) is the share of the final VB
+            // present from the first test: the classical wear curve's fast running-in before its
+            // steady growth (tool-life testing, ISO 3685:1993 Annex G). Without it a running-in
+            // land's constant part went to an edge radius and its trend was then held back as the
+            // edge's confounder (thirtieth session, family o). A shape parameter: no effect at VB = 0.
+            params: vec![p("vb", "mm", 0.0, 0.4, 0.0, 0.1), p("w_0", "-", 0.0, 0.5, 0.0, 0.2)],
             hook: Some(Hook::WearLand),
-            signature: "Fc +, Ft ++ growing with test order / measured VB, chip thickness unchanged",
+            signature: "Fc +, Ft ++ growing with test order / measured VB (from a running-in share at the first test), chip thickness unchanged",
             covariates: "flank wear VB per test, or the test order",
             // Cross-talk too: the land's normal-to-shear stress ratio differs between wear-land
             // models (Smithey et al.'s profiles here, Teitenberg et al. 1992's uniform stresses,
