@@ -56,10 +56,13 @@ pub(crate) struct ArtefactFit {
     pub(crate) g: f64,
     /// Sum of squared data residuals, noise units.
     pub(crate) rss: f64,
-    /// Sum of squared prior pseudo-residuals of the nuisance.
+    /// Sum of squared prior pseudo-residuals of the nuisance, and of the artefact's own when
+    /// `prior`.
     pub(crate) penalty: f64,
     /// Parameters of the fit (current model + 1).
     pub(crate) k: usize,
+    /// Whether the artefact's own prior ([`G_PRIOR_SD`]) entered the fit and `penalty`.
+    pub(crate) prior: bool,
 }
 
 impl ArtefactFit {
@@ -92,11 +95,18 @@ impl ArtefactFit {
 /// 0.5 %), so a larger factor is not an instrument explanation but a physical mismatch.
 const G_BOUND: f64 = 0.182_321_556_793_954_6;
 
+/// Prior standard deviation of the artefact parameter: half its bound, the rule of every nuisance
+/// prior (`crate::nuisance`). A calibration error is a nuisance of the measurement chain; its
+/// pseudo-residual `g / G_PRIOR_SD` enters the fit and the AICc as the nuisance priors' do.
+const G_PRIOR_SD: f64 = 0.5 * G_BOUND;
+
 struct ArtefactProblem<'a> {
     pr: &'a Problem<'a>,
     spec: &'a Spec,
     /// Per-test exponent basis of the force factor `exp(g b_i)`.
     basis: Vec<f64>,
+    /// Whether the artefact parameter carries its prior pseudo-residual `g / G_PRIOR_SD`.
+    prior: bool,
 }
 
 impl LmProblem for ArtefactProblem<'_> {
@@ -104,7 +114,9 @@ impl LmProblem for ArtefactProblem<'_> {
         layout(self.pr.sim, self.spec).0.len() + 1
     }
     fn residual_count(&self) -> usize {
-        self.pr.obs.len() + self.pr.sim.baseline_params().iter().filter(|p| p.prior_sd.is_some()).count()
+        self.pr.obs.len()
+            + self.pr.sim.baseline_params().iter().filter(|p| p.prior_sd.is_some()).count()
+            + usize::from(self.prior)
     }
     fn residuals(&self, p: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), IdentError> {
         let x: Vec<f64> = p.iter().copied().collect();
@@ -130,6 +142,9 @@ impl LmProblem for ArtefactProblem<'_> {
                 k += 1;
             }
         }
+        if self.prior {
+            out[k] = g[0] / G_PRIOR_SD;
+        }
         Ok(())
     }
 }
@@ -137,23 +152,36 @@ impl LmProblem for ArtefactProblem<'_> {
 /// Fits each artefact that this design can show on top of `current` (model `spec`). An artefact
 /// whose fit fails is left out (it can then not stop a claim; the mechanism's own checks stand);
 /// the caller leaves out those whose factor sits on its bound ([`ArtefactFit::within_bound`]).
+/// Whether the factor sits on its bound is the data's own answer, without the prior; one inside
+/// it is refitted with its prior, whose cost then counts in the AICc as the nuisance priors' do
+/// (a fit that fails with the prior keeps the one without, which stops claims more readily).
 pub(crate) fn fit_artefacts(pr: &Problem<'_>, current: &Fit, spec: &Spec) -> Vec<ArtefactFit> {
     let mut kinds = vec![Artefact::Gain];
     if spec.ctx.wear_state.is_some() {
         kinds.push(Artefact::Drift);
     }
-    kinds.into_iter().filter_map(|a| fit_artefact(pr, spec, &current.x, a, 0.0)).collect()
+    kinds
+        .into_iter()
+        .filter_map(|a| {
+            let free = fit_artefact(pr, spec, &current.x, a, 0.0, false)?;
+            if !free.within_bound() {
+                return Some(free);
+            }
+            Some(fit_artefact(pr, spec, &current.x, a, free.g, true).unwrap_or(free))
+        })
+        .collect()
 }
 
 /// Fits one artefact jointly with model `spec` from the model parameters `x0` and artefact
-/// parameter `g0`. `None` when the design cannot show it (drift without a run order) or the fit
-/// fails.
+/// parameter `g0`, with its prior when `prior`. `None` when the design cannot show it (drift
+/// without a run order) or the fit fails.
 pub(crate) fn fit_artefact(
     pr: &Problem<'_>,
     spec: &Spec,
     x0: &[f64],
     artefact: Artefact,
     g0: f64,
+    prior: bool,
 ) -> Option<ArtefactFit> {
     let basis = match artefact {
         Artefact::Gain => vec![1.0; pr.tests.len()],
@@ -172,7 +200,7 @@ pub(crate) fn fit_artefact(
         cost_tolerance: 1e-10,
         step_tolerance: 1e-9,
     };
-    let problem = ArtefactProblem { pr, spec, basis };
+    let problem = ArtefactProblem { pr, spec, basis, prior };
     let r = minimise(&problem, &bounds, &DVector::from_vec(start.clone()), &opts).ok()?;
     let mut out = DVector::zeros(problem.residual_count());
     problem.residuals(&r.params, &mut out).ok()?;
@@ -184,6 +212,7 @@ pub(crate) fn fit_artefact(
         rss,
         penalty,
         k: start.len(),
+        prior,
     })
 }
 
@@ -217,7 +246,7 @@ pub(crate) fn stops_claim(
         return false;
     };
     let da = a.aicc(n) - base_aicc;
-    let beyond = fit_artefact(pr, &c.spec, &c.fit.x, a.artefact, a.g).map(|j| {
+    let beyond = fit_artefact(pr, &c.spec, &c.fit.x, a.artefact, a.g, a.prior).map(|j| {
         let d = tested_df(c.id, j.k.saturating_sub(a.k));
         f_test(a.rss, j.rss, d, n, j.k + grid_chosen(c.id), boundary_params(c.id))
     });
@@ -256,16 +285,87 @@ mod tests {
     fn aicc_counts_the_artefact_parameter() {
         // AICc = n ln(RSS/n) + 2k + 2k(k+1)/(n-k-1) (Hurvich & Tsai 1989): for n = 20, RSS = 20,
         // k = 3 the first term is 0 and the rest 6 + 24/16 = 7.5.
-        let a = ArtefactFit { artefact: Artefact::Gain, g: 0.1, rss: 20.0, penalty: 0.0, k: 3 };
+        let a = ArtefactFit { artefact: Artefact::Gain, g: 0.1, rss: 20.0, penalty: 0.0, k: 3, prior: false };
         assert!((a.aicc(20) - stats::aicc(20.0, 20, 3)).abs() < 1e-12);
         assert!((a.aicc(20) - 7.5).abs() < 1e-9, "{}", a.aicc(20));
+    }
+
+    /// Fits the artefacts on six tests whose recorded forces are `gain` times a Mode A
+    /// simulation's (+-2 % deterministic scatter on Fc, none on Ft and the chip), over a baseline
+    /// with no parameters.
+    fn artefacts_read_through(gain: f64) -> Vec<ArtefactFit> {
+        use crate::context::Context;
+        use crate::diagnose::Config;
+        use crate::fit::observations;
+        use crate::problem::condition_groups;
+        use crate::simulator::{FixedSimulation, Prediction};
+        use cutcal_model::CuttingTest;
+        let (mut tests, mut entries) = (Vec::new(), Vec::new());
+        for i in 0..6 {
+            let (fc, ft, chip) = (2.0e5 + 2.0e4 * i as f64, 1.0e5, 2.0e-4);
+            let scatter = if i % 2 == 0 { 1.02 } else { 0.98 };
+            let t = CuttingTest::new(format!("{i}"), 1.0 + 0.5 * i as f64, 1e-4, 2e-3, 0.0)
+                .and_then(|t| t.with_forces(Some(fc * gain * scatter), Some(ft * gain)))
+                .and_then(|t| t.with_chip_thickness(Some(chip)))
+                .unwrap();
+            tests.push(t);
+            let p =
+                Prediction { fc_n_per_m: fc, ft_n_per_m: ft, chip_m: chip, t_ab_c: None, t_int_c: None, beta: None };
+            entries.push((format!("{i}"), p));
+        }
+        let sim = FixedSimulation::new(entries, false).unwrap();
+        let cfg = Config::standard("A");
+        let pr = Problem {
+            sim: &sim,
+            tests: &tests,
+            obs: observations(&tests),
+            groups: condition_groups(&tests),
+            cfg: &cfg,
+        };
+        let spec = Spec { mechanisms: Vec::new(), ctx: Context::of(&tests) };
+        let base = pr.fit(&spec, None).unwrap();
+        fit_artefacts(&pr, &base, &spec)
+    }
+
+    #[test]
+    fn a_gain_inside_its_bound_pays_its_prior() {
+        // Forces read 10 % high. The residuals are ln ratios over the noise (3 % Fc, 5 % Ft), so
+        // the gain's information is 6 / 0.03^2 + 6 / 0.05^2 = 9067 and the prior's (sd ln(1.2) / 2
+        // = 0.09116) 1 / 0.09116^2 = 120.3. The data alone give 0.0952 (ln 1.1 with the Fc
+        // scatter's weighted mean, -1.5e-4); the posterior mode is 0.0952 x 9067 / (9067 + 120.3)
+        // = 0.0939, and the fit pays (0.0939 / 0.09116)^2 = 1.06.
+        let fits = artefacts_read_through(1.1);
+        assert_eq!(fits.len(), 1, "a gain only: no run order, no drift");
+        let a = &fits[0];
+        assert!(a.prior && a.within_bound());
+        assert!((a.g - 0.0939).abs() < 5e-4, "{}", a.g);
+        assert!((a.penalty - (a.g / G_PRIOR_SD).powi(2)).abs() < 1e-9, "{} {}", a.penalty, a.g);
+        assert!((a.penalty - 1.06).abs() < 0.01, "{}", a.penalty);
+    }
+
+    #[test]
+    fn the_prior_does_not_pull_a_gain_off_its_bound() {
+        // Forces read 30 % high: the data want a gain beyond the 20 % bound, so the fit presses
+        // against it. That is judged without the prior (which would pull the estimate inside and
+        // make a physical mismatch look like a calibration error): the fit is returned as it is.
+        let fits = artefacts_read_through(1.3);
+        let a = &fits[0];
+        assert!(!a.prior && !a.within_bound(), "{a:?}");
+        assert!(a.penalty.abs() < 1e-12);
     }
 
     #[test]
     fn a_factor_on_its_bound_is_no_instrument_explanation() {
         // ln 1.2 is the bound: 1.15 and 1/1.15 are inside it, 1.2 and 1/1.2 (a fit pressing
         // against it) are not.
-        let fit = |factor: f64| ArtefactFit { artefact: Artefact::Gain, g: factor.ln(), rss: 1.0, penalty: 0.0, k: 2 };
+        let fit = |factor: f64| ArtefactFit {
+            artefact: Artefact::Gain,
+            g: factor.ln(),
+            rss: 1.0,
+            penalty: 0.0,
+            k: 2,
+            prior: false,
+        };
         assert!(fit(1.15).within_bound() && fit(1.0 / 1.15).within_bound());
         assert!(!fit(1.2).within_bound() && !fit(1.0 / 1.2).within_bound());
     }
