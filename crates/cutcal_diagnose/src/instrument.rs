@@ -13,6 +13,9 @@
 //!   against land shear, Smithey, Kapoor & DeVor 2001) and moves the chip, so the two separate
 //!   where the data carry that signature.
 //!
+//! Inside its bound `g` is a nuisance of the measurement chain and pays a prior of sd half the
+//! bound, as the shadow's nuisance does; whether it sits on the bound is judged without the prior.
+//!
 //! A mechanism whose refit does not beat an artefact by the AICc margin of the ambiguity rule
 //! (Burnham & Anderson 2002: a difference below 2 is no support for either) is not claimed; the
 //! report names the artefact. This rule only removes claims, so the calibrated family-wise level
