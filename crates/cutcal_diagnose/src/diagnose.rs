@@ -254,13 +254,13 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                     info(c.id).separate_by
                 ));
                 c.reason = format!(
-                    "{} {}, claimed in an earlier round: not claimed as a second mechanism (the \
+                    "confounded with {}, claimed in an earlier round: not claimed as a second mechanism (the \
                      remaining misfit may be {}'s true form; to separate them: {})",
-                    crate::verdict::HELD_BACK,
                     a.as_str(),
                     a.as_str(),
                     info(c.id).separate_by
                 );
+                c.held_back_for = Some(a);
             }
         }
         let eligible: Vec<usize> = (0..cands.len())

@@ -37,6 +37,8 @@ pub(crate) struct Candidate {
     pub(crate) reason: String,
     /// The instrument artefact that explains the mismatch at least as well and stopped the claim.
     pub(crate) stopped_by: Option<crate::instrument::Artefact>,
+    /// The earlier claim this candidate was held back for as a confounder (it passed its checks).
+    pub(crate) held_back_for: Option<MechanismId>,
 }
 
 /// Held-out residuals of a leave-one-condition-out pass, in observation order (noise units).

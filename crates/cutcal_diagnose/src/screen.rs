@@ -347,6 +347,7 @@ pub(crate) fn screen_and_refit(
             accepted: false,
             reason: String::new(),
             stopped_by: None,
+            held_back_for: None,
         });
     }
     Ok((out, lost))

@@ -8,17 +8,13 @@ use crate::mechanism::{info, MechanismId};
 use crate::problem::Candidate;
 use crate::report::{GlobalMisfit, Mismatch, Verdict};
 
-/// How a candidate held back as a confounder of an earlier claim has its reason begin
-/// (`crate::diagnose` writes it, [`outdone_by_held_back`] reads it).
-pub(crate) const HELD_BACK: &str = "confounded with";
-
 /// A later round's best candidate `best` is not claimed when a mechanism held back in the same round
 /// as a confounder of an earlier claim explains the remaining misfit better (lower AICc): what
 /// remains is then more likely the earlier claim's own form than a further mechanism, the reason the
 /// confounder was held back. Returns that confounder.
 pub(crate) fn outdone_by_held_back(cands: &[Candidate], best: usize) -> Option<usize> {
     (0..cands.len())
-        .filter(|&i| cands[i].reason.starts_with(HELD_BACK) && cands[i].daicc < cands[best].daicc)
+        .filter(|&i| cands[i].held_back_for.is_some() && cands[i].daicc < cands[best].daicc)
         .min_by(|&a, &b| cands[a].daicc.total_cmp(&cands[b].daicc))
 }
 
