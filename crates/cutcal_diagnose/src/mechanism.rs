@@ -164,7 +164,7 @@ pub fn set_hooks(
                 h.interface_heat_share *= phi[1];
             }
             MechanismId::SizeEffect => {
-                h.flow_multiplier *= size_factor(phi[0], t, ctx.size_h_ref_m);
+                h.flow_multiplier *= size_factor(phi[0], phi.get(2).copied().unwrap_or(1.0), t, ctx.size_h_ref_m);
                 h.friction_factor *= nix_gao(phi[0], t).powf(phi[1] - 1.0);
             }
             MechanismId::BuiltUpEdge => {
@@ -188,12 +188,15 @@ fn edge_rake_shift(r_m: f64, t: &CuttingTest) -> f64 {
     eff.max(EDGE_RAKE_FLOOR_RAD.min(t.rake_rad)) - t.rake_rad
 }
 
-/// Nix-Gao-type size factor `sqrt((1 + l/h) / (1 + l/h_ref))` with `l` in um (Nix & Gao 1998): the
-/// strengthening relative to the reference thickness `h_ref` at which the simulation's flow stress
-/// holds (`Context::size_h_ref_m`).
-fn size_factor(l_um: f64, t: &CuttingTest, h_ref_m: f64) -> f64 {
+/// Nix-Gao size factor `sqrt(1 + l/h) / (1 + l/h_ref)^(w_ref/2)` with `l` in um (Nix & Gao 1998).
+/// `w_ref` is the share of the strengthening at the dataset's geometric-mean thickness `h_ref`
+/// (`Context::size_h_ref_m`) that the simulation's flow stress already holds: 1 when its flow stress
+/// was set at these thicknesses (the strengthening is then relative to `h_ref`, with no level of its
+/// own there), 0 when it is the bulk material's (the absolute Nix-Gao factor, a strengthening at
+/// every thickness).
+fn size_factor(l_um: f64, w_ref: f64, t: &CuttingTest, h_ref_m: f64) -> f64 {
     let l = l_um * 1e-6;
-    ((1.0 + l / t.uncut_chip_thickness_m) / (1.0 + l / h_ref_m.max(1e-9))).sqrt()
+    (1.0 + l / t.uncut_chip_thickness_m).sqrt() / (1.0 + l / h_ref_m.max(1e-9)).powf(0.5 * w_ref.clamp(0.0, 1.0))
 }
 
 /// The absolute Nix-Gao factor `sqrt(1 + l/h)` (Nix & Gao 1998), at least 1.
@@ -389,16 +392,21 @@ mod tests {
     }
 
     #[test]
-    fn size_effect_is_relative_to_the_geometric_mean_thickness_and_bue_follows_the_interface() {
+    fn size_effect_is_relative_to_the_geometric_mean_thickness_by_its_share_and_bue_follows_the_interface() {
         let t = |id: &str, v: f64, h: f64| CuttingTest::new(id, v / 60.0, h * 1e-3, 1e-3, 0.0).unwrap();
         let tests = [t("a", 100.0, 0.05), t("b", 100.0, 0.2), t("c", 100.0, 0.1)];
         let mut ctx = Context::of(&tests);
         // Geometric mean of 0.05, 0.2 and 0.1 mm: (0.001)^(1/3) = 0.1 mm.
         assert!((ctx.size_h_ref_m - 0.1e-3).abs() < 1e-12);
         // l = 100 um: at h = 0.05 mm sqrt(3 / 2), at h_ref 1, at 0.2 mm sqrt(1.5 / 2).
-        assert!((size_factor(100.0, &tests[0], ctx.size_h_ref_m) - 1.5f64.sqrt()).abs() < 1e-12);
-        assert!((size_factor(100.0, &tests[2], ctx.size_h_ref_m) - 1.0).abs() < 1e-12);
-        assert!((size_factor(100.0, &tests[1], ctx.size_h_ref_m) - 0.75f64.sqrt()).abs() < 1e-12);
+        assert!((size_factor(100.0, 1.0, &tests[0], ctx.size_h_ref_m) - 1.5f64.sqrt()).abs() < 1e-12);
+        assert!((size_factor(100.0, 1.0, &tests[2], ctx.size_h_ref_m) - 1.0).abs() < 1e-12);
+        assert!((size_factor(100.0, 1.0, &tests[1], ctx.size_h_ref_m) - 0.75f64.sqrt()).abs() < 1e-12);
+        // w_ref = 0, the bulk material's flow stress: the absolute factor, sqrt(3) at 0.05 mm and
+        // sqrt(2) at h_ref; w_ref = 1/2 divides it by 2^(1/4) at every thickness.
+        assert!((size_factor(100.0, 0.0, &tests[0], ctx.size_h_ref_m) - 3f64.sqrt()).abs() < 1e-12);
+        assert!((size_factor(100.0, 0.0, &tests[2], ctx.size_h_ref_m) - 2f64.sqrt()).abs() < 1e-12);
+        assert!((size_factor(100.0, 0.5, &tests[2], ctx.size_h_ref_m) - 2f64.powf(0.25)).abs() < 1e-12);
         // One speed: no speed gate; with interface temperatures 400, 700, 550 degC the gate is the
         // temperature and the onset the geometric midpoint of the two coolest, sqrt(400 * 550).
         let sim = crate::simulator::OxleySimulator::new(

@@ -24,14 +24,18 @@ pub(crate) fn boundary_params(id: MechanismId) -> usize {
 }
 
 /// Fitted parameters that only shape a mechanism and have no effect when its strength is off (the
-/// size effect's `w_chip` at l = 0, the edge's `w_rake` at r_e = 0, the wear's running-in share
+/// size effect's `w_chip` and `w_ref` at l = 0, the edge's `w_rake` at r_e = 0, the wear's running-in share
 /// `w_0` at VB = 0): they are last in its list, add
 /// no numerator degree of freedom to its F-test (unidentified under the null, so the test is on the
 /// strength; the calibrated null refits them in every replicate, which accounts for their
 /// selection), and count in the AICc and the residual degrees of freedom as any fitted parameter
 /// does.
 pub(crate) fn shape_params(id: MechanismId) -> usize {
-    usize::from(matches!(id, MechanismId::SizeEffect | MechanismId::EdgePloughing | MechanismId::FlankWear))
+    match id {
+        MechanismId::SizeEffect => 2,
+        MechanismId::EdgePloughing | MechanismId::FlankWear => 1,
+        _ => 0,
+    }
 }
 
 /// Numerator degrees of freedom of mechanism `id`'s F-test when the fit gained `added` parameters
@@ -411,7 +415,7 @@ mod tests {
         assert_eq!(boundary_params(MechanismId::ForceCrosstalk), 0);
         // The size effect's strength l sits at its bound; its shape w_chip is not tested.
         assert_eq!(boundary_params(MechanismId::SizeEffect), 1);
-        assert_eq!(shape_params(MechanismId::SizeEffect), 1);
+        assert_eq!(shape_params(MechanismId::SizeEffect), 2);
         assert_eq!(shape_params(MechanismId::FlankWear), 1);
     }
 

@@ -35,3 +35,24 @@ fn a_size_effect_of_the_primary_zone_alone_is_named_with_its_shape() {
     let w = &size.params["w_chip"];
     assert!(w.ci_high.is_some_and(|hi| hi < 0.8), "w_chip = {}: {}", w.value, report.to_text());
 }
+
+/// A bulk size effect: every flow stress times 1 + l/h, l = 40 um (the linear form of Backer,
+/// Marshall & Shaw 1952, not the detector's Nix-Gao square root), on a simulation whose flow stress
+/// is the bulk material's. The factor is 1.8, 1.4 and 1.2 at h = 0.05, 0.1 and 0.2 mm: a force level
+/// of about 40 % at the design's mean thickness, far beyond the 6.9 % the baseline may absorb
+/// (`nuisance::level_bound`). The detector's size effect carries the level with its reference share
+/// `w_ref` below 1 (strengthening at every thickness). With the size effect relative to the mean
+/// thickness alone (before the thirty-second session) the level went to a second claim, thermal
+/// softening.
+#[test]
+fn a_bulk_size_effect_with_its_level_is_named_with_its_reference_share() {
+    let tests = design();
+    let ext = external(&tests, &|_| Hooks::NEUTRAL);
+    let bulk = |t: &CuttingTest| Hooks { flow_multiplier: 1.0 + 40e-6 / t.uncut_chip_thickness_m, ..Hooks::NEUTRAL };
+    let rec = measured(&tests, &external(&tests, &bulk), &|_| 1.0);
+    let report = run(&rec, &ext);
+    assert_eq!(report.selected, vec!["size_effect".to_string()], "{}", report.to_text());
+    let size = report.mechanisms.iter().find(|m| m.id == "size_effect").unwrap();
+    let w = &size.params["w_ref"];
+    assert!(w.value < 0.5, "w_ref = {}: {}", w.value, report.to_text());
+}

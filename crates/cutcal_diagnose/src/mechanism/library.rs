@@ -111,14 +111,25 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             // w_chip is the share of the strengthening the chip's flow stress at the interface takes:
             // 1 = every flow stress (Nix & Gao 1998 applied to the material), 0 = the primary shear
             // zone only (Joshi & Melkote 2004 apply the strain gradient to the primary zone, whose
-            // thickness scales with h). The common level is the baseline's (relative to h_ref), but
-            // the primary zone's strengthening over the chip's is absolute: in Oxley's closure k_chip
-            // enters only tau_int = m_f k_chip, so the primary zone alone strengthened by
-            // F = sqrt(1 + l/h) is every flow stress times F with the interface factor times
-            // F^(w_chip - 1) (at most 1).
-            params: vec![p("l_um", "um", 0.0, 3000.0, 0.0, 5.0), p("w_chip", "-", 0.0, 1.0, 1.0, 0.0)],
+            // thickness scales with h). The primary zone's strengthening over the chip's is absolute:
+            // in Oxley's closure k_chip enters only tau_int = m_f k_chip, so the primary zone alone
+            // strengthened by F = sqrt(1 + l/h) is every flow stress times F with the interface
+            // factor times F^(w_chip - 1) (at most 1).
+            // w_ref (thirty-second session) is the share of the strengthening at the dataset's
+            // geometric-mean thickness h_ref that the simulation's flow stress already holds:
+            // 1 = a flow stress set at these thicknesses (the factor relative to h_ref, no level of
+            // its own there; a JC set identified from cuts like these), 0 = the bulk material's (the
+            // absolute factor, a strengthening at every thickness; a JC set from compression or
+            // Hopkinson-bar tests). The level then comes with the trend through the one length l,
+            // never alone: a level the baseline cannot absorb (`nuisance::level_bound`) is not left
+            // to a thermal mechanism. Like w_chip, a shape parameter (`screen::shape_params`).
+            params: vec![
+                p("l_um", "um", 0.0, 3000.0, 0.0, 5.0),
+                p("w_chip", "-", 0.0, 1.0, 1.0, 0.0),
+                p("w_ref", "-", 0.0, 1.0, 1.0, 0.0),
+            ],
             hook: Some(Hook::FlowMultiplier),
-            signature: "Fc and Ft up by the same factor at small h, Ft/Fc and chip unchanged (w_chip = 1); with the primary zone alone (w_chip < 1) the chip also thins and Ft/Fc falls at small h",
+            signature: "Fc and Ft up by the same factor at small h, Ft/Fc and chip unchanged (w_chip = 1); with the primary zone alone (w_chip < 1) the chip also thins and Ft/Fc falls at small h; with the bulk flow stress in the simulation (w_ref < 1) the forces are also up at every h",
             covariates: "at least three feeds",
             confounders: &[M::EdgePloughing, M::ToolChipFriction],
             separate_by: "add a second edge radius or a wider feed range: Ft/Fc stays flat for a size effect",
