@@ -316,7 +316,7 @@ mod tests {
             (nominal.jc.a, nominal.jc.b, nominal.jc.n, nominal.jc.c, nominal.jc.m)
         );
         assert_eq!((light.rho, light.cp, light.k, light.k_tool), (nominal.rho, nominal.cp, nominal.k, nominal.k_tool));
-        assert!(full.jc.a != nominal.jc.a && full.rho != nominal.rho);
+        assert!(full.jc.a.to_bits() != nominal.jc.a.to_bits() && full.rho.to_bits() != nominal.rho.to_bits());
         assert!(NuisanceScope::parse("eta-psi") == Ok(NuisanceScope::EtaPsi) && NuisanceScope::parse("half").is_err());
     }
 
