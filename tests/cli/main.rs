@@ -10,6 +10,7 @@ mod determinism;
 mod identify;
 mod pipe;
 mod predict;
+mod real_cases;
 mod recordings;
 
 use std::path::{Path, PathBuf};

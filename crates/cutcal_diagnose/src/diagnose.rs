@@ -6,8 +6,10 @@
 //! and refit; the family level divided by the number of mechanisms, Bonferroni, only when no
 //! replicates are asked for; the chi-bar-square mixture for parameters whose off value sits on a
 //! bound, Self & Liang 1987); (2) a lower leave-one-condition-out error than the baseline, for
-//! the mechanism and for the nested selection pipeline; (3) a 95 % interval that excludes the
-//! mechanism's off value with the estimate off its far bound; (4) no rival within 2 AICc whose
+//! the mechanism and for the nested selection pipeline; (3) residual degrees of freedom for its
+//! 95 % intervals (reported, with a note when no single interval of a strength excludes its off
+//! value or a strength sits at its far bound; the joint F-test decides) and, for softening, no
+//! crossing of its two forms; (4) no rival within 2 AICc whose
 //! fitted correction has a cosine above 0.9 with it. In-sample improvement alone never suffices.
 //! The candidate set of the nested pipeline is taken from the full-data screen (the per-fold
 //! decision is re-run, the screen is not): a stated, small optimism.

@@ -281,6 +281,10 @@ pub(crate) fn screen_and_refit(
                 let inf = info(s.id);
                 let mut any_excludes = false;
                 let mut far_bound = false;
+                // Only a strength has an off value and a far bound that mean anything: a shape
+                // parameter (`shape_params`, last in the list) has no effect at the strength's off
+                // value, and its own bounds are the ends of its form, not of the effect's size.
+                let strengths = d.saturating_sub(shape_params(s.id));
                 for c in 0..d {
                     let pi = inf.params[c];
                     let v = f.x[current.k + c];
@@ -291,6 +295,9 @@ pub(crate) fn screen_and_refit(
                     } else {
                         ci.push((v, None, None));
                         ci_note = "the joint covariance is not finite at the estimate".into();
+                    }
+                    if c >= strengths {
+                        continue;
                     }
                     if pi.off < l || pi.off > h {
                         any_excludes = true;
@@ -413,7 +420,7 @@ mod tests {
         assert_eq!(boundary_params(MechanismId::ThermalSoftening), 0);
         assert_eq!(boundary_params(MechanismId::BuiltUpEdge), 1);
         assert_eq!(boundary_params(MechanismId::ForceCrosstalk), 0);
-        // The size effect's strength l sits at its bound; its shape w_chip is not tested.
+        // The size effect's strength l sits at its bound; its shapes w_chip and w_ref are not tested.
         assert_eq!(boundary_params(MechanismId::SizeEffect), 1);
         assert_eq!(shape_params(MechanismId::SizeEffect), 2);
         assert_eq!(shape_params(MechanismId::FlankWear), 1);
