@@ -2,13 +2,7 @@
 
 use std::fs;
 
-use super::{cutcal, stderr};
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let o = cutcal(args);
-    assert!(o.status.success(), "{}", stderr(&o));
-    serde_json::from_slice(&o.stdout).expect("one JSON object")
-}
+use super::{cutcal, json, stderr};
 
 #[test]
 fn enhanced_json_has_the_documented_keys_and_table4_values() {

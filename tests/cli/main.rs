@@ -26,6 +26,13 @@ pub fn cutcal(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_cutcal")).args(args).current_dir(root()).output().expect("run cutcal")
 }
 
+/// Runs `cutcal` with `args`, asserts success and parses its stdout as one JSON value.
+pub fn json(args: &[&str]) -> serde_json::Value {
+    let o = cutcal(args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).expect("one JSON value")
+}
+
 /// Stderr as text.
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()

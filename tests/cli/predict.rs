@@ -1,7 +1,7 @@
 //! `cutcal predict` on the paper's C38 conditions with the Table 5 JC set: Lalwani's search
 //! ranges hold no solution (C0 must exceed 10), the default wide ranges do.
 
-use super::{cutcal, stderr};
+use super::json;
 
 fn predict(extra: &[&str]) -> serde_json::Value {
     let mut args = vec![
@@ -15,9 +15,7 @@ fn predict(extra: &[&str]) -> serde_json::Value {
         "--json",
     ];
     args.extend_from_slice(extra);
-    let o = cutcal(&args);
-    assert!(o.status.success(), "{}", stderr(&o));
-    serde_json::from_slice(&o.stdout).expect("JSON")
+    json(&args)
 }
 
 #[test]

@@ -1,13 +1,7 @@
 //! The README's two real cases of `cutcal diagnose` ("Discrepancy discovery"), run through the
 //! binary as a user runs them, so that what the README says of them stays true.
 
-use super::{cutcal, stderr};
-
-fn report(args: &[&str]) -> serde_json::Value {
-    let out = cutcal(args);
-    assert!(out.status.success(), "{}", stderr(&out));
-    serde_json::from_slice(&out.stdout).expect("JSON report")
-}
+use super::json as report;
 
 fn names(v: &serde_json::Value) -> Vec<&str> {
     v.as_array().expect("a list").iter().map(|s| s.as_str().expect("a name")).collect()

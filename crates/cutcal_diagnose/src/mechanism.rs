@@ -195,8 +195,7 @@ fn edge_rake_shift(r_m: f64, t: &CuttingTest) -> f64 {
 /// own there), 0 when it is the bulk material's (the absolute Nix-Gao factor, a strengthening at
 /// every thickness).
 fn size_factor(l_um: f64, w_ref: f64, t: &CuttingTest, h_ref_m: f64) -> f64 {
-    let l = l_um * 1e-6;
-    (1.0 + l / t.uncut_chip_thickness_m).sqrt() / (1.0 + l / h_ref_m.max(1e-9)).powf(0.5 * w_ref.clamp(0.0, 1.0))
+    nix_gao(l_um, t) / (1.0 + l_um.max(0.0) * 1e-6 / h_ref_m.max(1e-9)).powf(0.5 * w_ref.clamp(0.0, 1.0))
 }
 
 /// The absolute Nix-Gao factor `sqrt(1 + l/h)` (Nix & Gao 1998), at least 1.
