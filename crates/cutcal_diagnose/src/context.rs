@@ -21,6 +21,12 @@ pub struct Context {
     /// every test: the built-up edge is then gated by it (it forms on a cool interface and
     /// disappears as the interface heats, Trent & Wright 2000), else by the speed.
     pub bue_gate_c: Option<Vec<f64>>,
+    /// The baseline's apparent tool-chip friction coefficient per test over its largest value, in
+    /// (0, 1], when the simulator gives both forces at every test: `mu_app = F/N = tan(alpha +
+    /// atan(Ft/Fc))` (Merchant's force circle), which in Oxley's closure is `k_chip / sigma_N`, the
+    /// coefficient below which a Coulomb law caps the interface shear. The hybrid friction law's
+    /// shape (`mechanism::hybrid_friction_factor`; Oezel 2006).
+    pub friction_load: Option<Vec<f64>>,
     /// Reference speed of the speed-dependent friction factor, m/min: the geometric mean of the
     /// test speeds of the whole dataset (kept in folds, so that m_f0 means the same in each).
     pub friction_v_ref_m_min: f64,
@@ -82,6 +88,7 @@ impl Context {
             vb_tests_smoothed,
             bue_onset: 0.0,
             bue_gate_c: None,
+            friction_load: None,
             friction_v_ref_m_min,
             size_h_ref_m,
             edge_shape,
@@ -89,15 +96,25 @@ impl Context {
         }
     }
 
-    /// The context with the built-up-edge gate set to the interface temperature `sim` gives at its
-    /// start parameters without mechanisms, when it gives a finite one above 20 degC at every test.
+    /// The context with what the baseline interface gives, from `sim` at its start parameters
+    /// without mechanisms: the built-up-edge gate set to the interface temperature when it is a
+    /// finite one above 20 degC at every test, and the friction load ([`Context::friction_load`])
+    /// when every test has a finite apparent friction coefficient in (0.01, 10).
     #[must_use]
-    pub fn with_interface_gate(mut self, sim: &dyn Simulator, tests: &[CuttingTest]) -> Self {
+    pub fn with_baseline_interface(mut self, sim: &dyn Simulator, tests: &[CuttingTest]) -> Self {
         let start: Vec<f64> = sim.baseline_params().iter().map(|p| p.start).collect();
-        let preds = sim.simulate(tests, &start, &vec![Hooks::NEUTRAL; tests.len()]);
-        let t: Option<Vec<f64>> =
-            preds.ok().and_then(|p| p.iter().map(|p| p.t_int_c.filter(|t| t.is_finite() && *t > 20.0)).collect());
-        self.bue_gate_c = t;
+        let Ok(preds) = sim.simulate(tests, &start, &vec![Hooks::NEUTRAL; tests.len()]) else { return self };
+        self.bue_gate_c = preds.iter().map(|p| p.t_int_c.filter(|t| t.is_finite() && *t > 20.0)).collect();
+        let mu: Option<Vec<f64>> = tests
+            .iter()
+            .zip(&preds)
+            .map(|(t, p)| {
+                let angle = t.rake_rad + (p.ft_n_per_m / p.fc_n_per_m).atan();
+                let mu = angle.tan();
+                (p.fc_n_per_m > 0.0 && angle < 1.5 && mu.is_finite() && (0.01..10.0).contains(&mu)).then_some(mu)
+            })
+            .collect();
+        self.friction_load = mu.and_then(|m| over_max(&m));
         self
     }
 
@@ -115,6 +132,7 @@ impl Context {
             wear_state: self.wear_state.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             bue_onset: self.bue_onset,
             bue_gate_c: self.bue_gate_c.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
+            friction_load: self.friction_load.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             friction_v_ref_m_min: self.friction_v_ref_m_min,
             size_h_ref_m: self.size_h_ref_m,
             edge_shape: self.edge_shape.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),

@@ -113,7 +113,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     let pr = Problem { sim, tests, obs, groups, cfg };
     let n = pr.n();
     let noise = cfg.noise;
-    let ctx0 = Context::of(tests).with_interface_gate(sim, tests);
+    let ctx0 = Context::of(tests).with_baseline_interface(sim, tests);
     let base_spec = Spec { mechanisms: Vec::new(), ctx: ctx0.clone() };
     let base = pr.fit(&base_spec, None)?;
     let mut fit_notes: Vec<String> = Vec::new();

@@ -17,8 +17,10 @@ use crate::hooks::{Hook, Hooks};
 use crate::simulator::{Prediction, Simulator};
 
 mod bue;
+mod friction;
 mod library;
 pub use bue::{bue_indicator, bue_onsets};
+pub use friction::{friction_factor, hybrid_friction_factor};
 pub use library::info;
 
 /// Identifier of a library mechanism (the JSON/CLI spelling is snake_case).
@@ -118,13 +120,6 @@ pub struct MechanismInfo {
     pub separate_by: &'static str,
 }
 
-/// Speed-dependent interface friction factor `m_f0 (V / V_ref)^(-p_v)` (design note M5, the power
-/// law in V; Rech, Claudin & D'Eramo 2009 measured friction falling with sliding speed).
-#[must_use]
-pub fn friction_factor(m_f0: f64, p_v: f64, speed_m_min: f64, v_ref_m_min: f64) -> f64 {
-    m_f0 * (speed_m_min / v_ref_m_min).powf(-p_v)
-}
-
 /// Sets the in-model hooks of mechanism `id` with parameters `phi` (only where `sim` supports them).
 pub fn set_hooks(
     id: MechanismId,
@@ -153,7 +148,9 @@ pub fn set_hooks(
                 h.wear_land_m += phi[0] * 1e-3 * ctx.wear_state.as_ref().map_or(0.0, |w| w0 + (1.0 - w0) * w[i]);
             }
             MechanismId::ToolChipFriction => {
-                h.friction_factor *= friction_factor(phi[0], phi[1], t.speed_m_per_s * 60.0, ctx.friction_v_ref_m_min)
+                let m = friction_factor(phi[0], phi[1], t.speed_m_per_s * 60.0, ctx.friction_v_ref_m_min);
+                let load = ctx.friction_load.as_ref().map_or(1.0, |l| l[i]);
+                h.friction_factor *= hybrid_friction_factor(m, load, phi.get(2).copied().unwrap_or(0.0));
             }
             MechanismId::ThermalSoftening => {
                 h.extra_softening += phi[0];
@@ -293,40 +290,6 @@ mod tests {
             assert_eq!(info(m).id, m);
         }
         assert_eq!(MechanismId::parse("gain_error"), None);
-    }
-
-    #[test]
-    fn friction_factor_falls_with_speed_about_the_reference() {
-        // m_f0 (V/V_ref)^(-p_v): equal to m_f0 at V_ref, 2^(-0.2) = 0.8706 of it at twice V_ref,
-        // constant when p_v = 0; the context's V_ref is the geometric mean speed (80, 320 -> 160).
-        assert!((friction_factor(0.7, 0.2, 150.0, 150.0) - 0.7).abs() < 1e-12);
-        assert!((friction_factor(0.7, 0.2, 300.0, 150.0) - 0.7 * 0.870_550_563_3).abs() < 1e-9);
-        assert!((friction_factor(0.7, 0.0, 37.0, 150.0) - 0.7).abs() < 1e-12);
-        let tests = [
-            CuttingTest::new("a", 80.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap(),
-            CuttingTest::new("b", 320.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap(),
-        ];
-        assert!((Context::of(&tests).friction_v_ref_m_min - 160.0).abs() < 1e-9);
-    }
-
-    #[test]
-    fn speed_exponent_moves_the_oxley_model_in_the_m5_direction() {
-        // Note Sec 2.3, M5: with p_v > 0 the feed force falls with ln V relative to constant m_f.
-        let m = cutcal_model::reference::aisi1045_lalwani2009();
-        let jc = crate::simulator::tests::jaspers();
-        let tests = [
-            CuttingTest::new("lo", 100.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap(),
-            CuttingTest::new("hi", 400.0 / 60.0, 0.1e-3, 1e-3, 0.0).unwrap(),
-        ];
-        let ctx = Context::of(&tests);
-        let sim = crate::simulator::OxleySimulator::new(&m, jc, &crate::simulator::JcBox::wide(), false);
-        let ratio = |p_v: f64| {
-            let mut hooks = [Hooks::NEUTRAL; 2];
-            set_hooks(MechanismId::ToolChipFriction, &[0.7, p_v], &tests, &ctx, &sim, &mut hooks);
-            let r = sim.simulate(&tests, &[], &hooks).unwrap();
-            r[1].ft_n_per_m / r[0].ft_n_per_m
-        };
-        assert!(ratio(0.3) < 0.97 * ratio(0.0), "{} vs {}", ratio(0.3), ratio(0.0));
     }
 
     #[test]

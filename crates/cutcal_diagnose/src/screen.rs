@@ -25,7 +25,7 @@ pub(crate) fn boundary_params(id: MechanismId) -> usize {
 
 /// Fitted parameters that only shape a mechanism and have no effect when its strength is off (the
 /// size effect's `w_chip` and `w_ref` at l = 0, the edge's `w_rake` at r_e = 0, the wear's running-in share
-/// `w_0` at VB = 0): they are last in its list, add
+/// `w_0` at VB = 0, the friction's Coulomb share `w_c` at m_f0 = 1 and p_v = 0): they are last in its list, add
 /// no numerator degree of freedom to its F-test (unidentified under the null, so the test is on the
 /// strength; the calibrated null refits them in every replicate, which accounts for their
 /// selection), and count in the AICc and the residual degrees of freedom as any fitted parameter
@@ -33,7 +33,7 @@ pub(crate) fn boundary_params(id: MechanismId) -> usize {
 pub(crate) fn shape_params(id: MechanismId) -> usize {
     match id {
         MechanismId::SizeEffect => 2,
-        MechanismId::EdgePloughing | MechanismId::FlankWear => 1,
+        MechanismId::EdgePloughing | MechanismId::FlankWear | MechanismId::ToolChipFriction => 1,
         _ => 0,
     }
 }
@@ -424,6 +424,7 @@ mod tests {
         assert_eq!(boundary_params(MechanismId::SizeEffect), 1);
         assert_eq!(shape_params(MechanismId::SizeEffect), 2);
         assert_eq!(shape_params(MechanismId::FlankWear), 1);
+        assert_eq!(shape_params(MechanismId::ToolChipFriction), 1);
     }
 
     #[test]

@@ -53,15 +53,27 @@ pub fn info(id: MechanismId) -> MechanismInfo {
         },
         M::ToolChipFriction => MechanismInfo {
             id,
-            title: "tool-chip friction below full sticking (sliding region), falling with speed",
-            source: "Zorev 1963; Oxley 1989; Rech, Claudin & D'Eramo 2009; design note M4, M5",
+            title: "tool-chip friction below full sticking (sliding region), falling with speed or capped by Coulomb friction",
+            source: "Zorev 1963; Oxley 1989; Rech, Claudin & D'Eramo 2009; Oezel 2006 (hybrid Coulomb-Tresca law); design note M4, M5",
             // m_f = m_f0 (V / V_ref)^(-p_v), V_ref the geometric mean test speed (note M5). The
             // lower bound 0.2 of m_f0 admits the mean Zorev interface shear of note M4 with a short
             // sticking zone (a sticking fraction 0.2 and mu = 0.25 under its sigma_n = sigma_max
             // (1 - x/l_c)^2.5 give about 0.28 k_chip); p_v <= 0.5 is note M5's range.
-            params: vec![p("m_f0", "-", 0.2, 1.0, 1.0, 0.85), p("p_v", "-", 0.0, 0.5, 0.0, 0.15)],
+            // w_c (thirty-third session) is the Coulomb share of the law: 0 = the shear-factor
+            // law m_f k_chip, 1 = the hybrid Coulomb-Tresca law min(mu sigma_N, k_chip) of DEFORM
+            // and Abaqus (Oezel 2006), which slides where the baseline interface needs the most
+            // friction to stick (a cool chip on a hard primary zone: thin cuts, low speeds) and
+            // sticks unchanged where it needs little (`mechanism::hybrid_friction_factor`). A
+            // shape parameter: no effect at m_f0 = 1, p_v = 0 (`screen::shape_params`). Without it
+            // a hybrid law's reduction, largest on the coolest interfaces, was named a built-up
+            // edge (family o, OxleyPython: 3 of 12 frictions named).
+            params: vec![
+                p("m_f0", "-", 0.2, 1.0, 1.0, 0.85),
+                p("p_v", "-", 0.0, 0.5, 0.0, 0.15),
+                p("w_c", "-", 0.0, 1.0, 0.0, 1.0),
+            ],
             hook: Some(Hook::FrictionFactor),
-            signature: "Fc - (mild), Ft --, chip thinner; Ft/Fc falling with ln V when p_v > 0",
+            signature: "Fc - (mild), Ft --, chip thinner; Ft/Fc falling with ln V when p_v > 0; with a Coulomb share (w_c > 0) most where the baseline's apparent friction F/N is highest",
             covariates: "none for m_f0; p_v needs at least two speeds",
             confounders: &[M::ThermalSoftening, M::ForceCrosstalk],
             separate_by: "measure the chip thickness (mass-based) and the contact length; a channel-gain error does not move the chip",
