@@ -27,6 +27,9 @@ pub struct Context {
     /// coefficient below which a Coulomb law caps the interface shear. The hybrid friction law's
     /// shape (`mechanism::hybrid_friction_factor`; Oezel 2006).
     pub friction_load: Option<Vec<f64>>,
+    /// The friction law's form, chosen by the refit: 0 = the shear-factor law, 1 = the hybrid
+    /// Coulomb-Tresca law on `friction_load` (`mechanism::hybrid_friction_factor`).
+    pub friction_coulomb: f64,
     /// Reference speed of the speed-dependent friction factor, m/min: the geometric mean of the
     /// test speeds of the whole dataset (kept in folds, so that m_f0 means the same in each).
     pub friction_v_ref_m_min: f64,
@@ -89,6 +92,7 @@ impl Context {
             bue_onset: 0.0,
             bue_gate_c: None,
             friction_load: None,
+            friction_coulomb: 0.0,
             friction_v_ref_m_min,
             size_h_ref_m,
             edge_shape,
@@ -133,6 +137,7 @@ impl Context {
             bue_onset: self.bue_onset,
             bue_gate_c: self.bue_gate_c.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             friction_load: self.friction_load.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
+            friction_coulomb: self.friction_coulomb,
             friction_v_ref_m_min: self.friction_v_ref_m_min,
             size_h_ref_m: self.size_h_ref_m,
             edge_shape: self.edge_shape.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),

@@ -11,6 +11,7 @@ pub mod classes;
 mod context;
 pub mod error;
 pub mod fit;
+mod ftest;
 mod heldout;
 pub mod hooks;
 mod instrument;

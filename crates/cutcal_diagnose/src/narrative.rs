@@ -45,6 +45,19 @@ pub(crate) fn result_of(
             ParamValue { value: v, unit: unit.into(), ci_low: None, ci_high: None, ci_note: note.into() },
         );
     }
+    if c.id == MechanismId::ToolChipFriction && c.spec.ctx.friction_load.is_some() {
+        let note = "the law's form, chosen by the refit's objective: 0 = shear factor m_f k_chip, 1 = hybrid Coulomb-Tresca min(mu sigma_N, k_chip)";
+        params.insert(
+            "w_c".into(),
+            ParamValue {
+                value: c.spec.ctx.friction_coulomb,
+                unit: "-".into(),
+                ci_low: None,
+                ci_high: None,
+                ci_note: note.into(),
+            },
+        );
+    }
     let outputs: Vec<usize> = obs.iter().map(|o| o.output).collect();
     MechanismResult {
         id: c.id.as_str().into(),

@@ -7,105 +7,14 @@ use nalgebra::{DMatrix, DVector};
 
 use crate::error::DiagnoseError;
 use crate::fit::{self, data_jacobian, project_out, Fit, Spec};
+pub(crate) use crate::ftest::{boundary_params, cosine, f_test, grid_chosen, shape_params, tested_df};
 use crate::mechanism::{bue_onsets, info, softening_conflict, MechanismId};
 use crate::problem::{Candidate, Problem};
 use crate::report::*;
 use crate::stats;
 
-/// How many of a mechanism's fitted parameters have their off value on a bound of their range
-/// (edge radius, wear land, size-effect length, built-up-edge rake shift: 0 at the lower bound;
-/// friction: m_f0 = 1 at the upper and p_v = 0 at the lower bound). Under the null such a parameter
-/// can only move one way, so the likelihood-ratio statistic is a chi-bar-square mixture rather than
-/// chi-square(d) (Self & Liang 1987). The built-up-edge onset is chosen on a grid, not fitted.
-pub(crate) fn boundary_params(id: MechanismId) -> usize {
-    let inf = info(id);
-    let fitted = if id == MechanismId::BuiltUpEdge { 1 } else { inf.params.len() };
-    inf.params[..fitted - shape_params(id)].iter().filter(|p| p.off <= p.lower || p.off >= p.upper).count()
-}
-
-/// Fitted parameters that only shape a mechanism and have no effect when its strength is off (the
-/// size effect's `w_chip` and `w_ref` at l = 0, the edge's `w_rake` at r_e = 0, the wear's running-in share
-/// `w_0` at VB = 0, the friction's Coulomb share `w_c` at m_f0 = 1 and p_v = 0): they are last in its list, add
-/// no numerator degree of freedom to its F-test (unidentified under the null, so the test is on the
-/// strength; the calibrated null refits them in every replicate, which accounts for their
-/// selection), and count in the AICc and the residual degrees of freedom as any fitted parameter
-/// does.
-pub(crate) fn shape_params(id: MechanismId) -> usize {
-    match id {
-        MechanismId::SizeEffect => 2,
-        MechanismId::EdgePloughing | MechanismId::FlankWear | MechanismId::ToolChipFriction => 1,
-        _ => 0,
-    }
-}
-
-/// Numerator degrees of freedom of mechanism `id`'s F-test when the fit gained `added` parameters
-/// with it: its shape parameters are not tested ([`shape_params`]).
-pub(crate) fn tested_df(id: MechanismId, added: usize) -> usize {
-    added.saturating_sub(shape_params(id))
-}
-
-/// Parameters of a mechanism chosen on a grid rather than fitted (the built-up-edge onset): they
-/// count in the AICc as any fitted parameter does (Burnham & Anderson 2002, Sec 2.2: K is every
-/// estimated parameter), so that a mechanism with a grid-chosen gate has no advantage over one
-/// whose second parameter is fitted.
-pub(crate) fn grid_chosen(id: MechanismId) -> usize {
-    usize::from(id == MechanismId::BuiltUpEdge)
-}
-
-/// Binomial coefficient for the small counts of the mixture weights.
-fn choose(n: usize, k: usize) -> f64 {
-    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
-}
-
-/// F-test p-value of a nested least-squares comparison with `boundary` of its `d` new parameters
-/// off on a bound of their range.
-///
-/// With `X = (rss0 - rss1) / s2`, the statistic of `d` parameters of which `b` sit on a bound under
-/// the null is the mixture `sum_j C(b, j) 2^-b chi2(d - b + j)` (Self & Liang 1987, Theorem 3, for
-/// information that is block-diagonal between the parameters; chi2(0) is a point mass at 0), each
-/// component taken as its F analogue `F(q, df2)` at `X / q`. One one-sided parameter (`d = b = 1`)
-/// gives the familiar halving of the two-sided p-value; `b = 0` the plain F-test.
-///
-/// The residuals are in units of the noise model, so the residual variance is never taken below 1:
-/// a fit closer than the stated measurement scatter does not make a smaller improvement
-/// significant (the test is then the known-variance one, with F(d, df2) as its conservative
-/// reference). Without the floor, noise-free or over-smoothed recordings let a 0.4 % systematic
-/// difference pass as physics.
-pub(crate) fn f_test(rss0: f64, rss1: f64, d: usize, n: usize, k1: usize, boundary: usize) -> f64 {
-    if d == 0 || n <= k1 || rss1 <= 0.0 {
-        return f64::NAN;
-    }
-    let df2 = (n - k1) as f64;
-    let x = (rss0 - rss1).max(0.0) / (rss1 / df2).max(1.0);
-    let b = boundary.min(d);
-    let w = 0.5f64.powi(b as i32);
-    (0..=b)
-        .map(|j| {
-            let q = d - b + j;
-            if q == 0 {
-                0.0
-            } else {
-                choose(b, j) * w * stats::f_sf(x / q as f64, q as f64, df2)
-            }
-        })
-        .sum()
-}
-
-pub(crate) fn cosine(a: &[f64], b: &[f64]) -> f64 {
-    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
-    for (x, y) in a.iter().zip(b) {
-        ab += x * y;
-        aa += x * x;
-        bb += y * y;
-    }
-    if aa <= 0.0 || bb <= 0.0 {
-        0.0
-    } else {
-        (ab / (aa * bb).sqrt()).abs()
-    }
-}
-
 /// A mechanism after its score test, before its refit.
+#[derive(Clone)]
 struct Screened {
     id: MechanismId,
     spec: Spec,
@@ -227,7 +136,7 @@ pub(crate) fn screen_and_refit(
     // replicate, so refitting more candidates tightens the level rather than inflating the
     // family-wise false-positive rate.
     let mut out = Vec::new();
-    for s in screened {
+    for mut s in screened {
         let (_, lo, hi, start) = fit::layout(pr.sim, &s.spec);
         let mut x0 = current.x.clone();
         x0.extend_from_slice(&start[current.k..]);
@@ -239,6 +148,7 @@ pub(crate) fn screen_and_refit(
             }
         };
         let f = nested_floor(pr, &s, current, f);
+        let f = coulomb_form(pr, &mut s, &x0, current, f);
         if matches!(f.status, fit::FitStatus::Underdetermined | fit::FitStatus::ShortRetry(_)) {
             let why = f.status.note().unwrap_or_default();
             lost.push(NotTestable { id: s.id.as_str().into(), reason: format!("refit not usable: {why}") });
@@ -381,6 +291,28 @@ fn nested_floor(pr: &Problem<'_>, s: &Screened, current: &Fit, f: Fit) -> Fit {
     }
 }
 
+/// Friction's second form, the hybrid Coulomb-Tresca law (`Context::friction_coulomb` = 1), refitted
+/// beside the shear-factor form `f` of `s`; the lower objective is kept and `s` takes its spec. The
+/// two forms have the same parameters, so the choice is between two candidate models, as between
+/// two mechanisms (the calibrated null makes the same choice in every replicate).
+fn coulomb_form(pr: &Problem<'_>, s: &mut Screened, x0: &[f64], current: &Fit, f: Fit) -> Fit {
+    let ctx = &s.spec.ctx;
+    if s.id != MechanismId::ToolChipFriction || ctx.friction_load.is_none() || ctx.friction_coulomb > 0.0 {
+        return f;
+    }
+    let mut alt = s.clone();
+    alt.spec.ctx.friction_coulomb = 1.0;
+    let Ok(g) = pr.fit(&alt.spec, Some(x0)) else { return f };
+    let g = nested_floor(pr, &alt, current, g);
+    let usable = !matches!(g.status, fit::FitStatus::Underdetermined | fit::FitStatus::ShortRetry(_));
+    if usable && g.objective() < f.objective() {
+        *s = alt;
+        g
+    } else {
+        f
+    }
+}
+
 /// The current parameters `x` followed by mechanism `id`'s fitted parameters at their off values:
 /// the point at which the model with `id` added reproduces the current model.
 fn nested_point(x: &[f64], id: MechanismId) -> Vec<f64> {
@@ -392,53 +324,4 @@ fn nested_point(x: &[f64], id: MechanismId) -> Vec<f64> {
 /// `Some(v)` for a finite number, `None` otherwise (reports never carry NaN or inf).
 pub(crate) fn finite(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{boundary_params, f_test, shape_params};
-    use crate::mechanism::MechanismId;
-
-    #[test]
-    fn boundary_mixture_matches_the_chi_bar_square_by_hand() {
-        // Large df2 (F(q, df2) q -> chi2(q)) and X = rss0 - rss1 = 6 (rss1 / df2 < 1, so s2 = 1).
-        // Two parameters, both off on a bound (friction): 1/4 chi2(0) + 1/2 chi2(1) + 1/4 chi2(2).
-        // P(chi2(1) > 6) = erfc(sqrt(3)) = 0.014306, P(chi2(2) > 6) = exp(-3) = 0.049787, so
-        // p = 0.5 0.014306 + 0.25 0.049787 = 0.019600.
-        let p = f_test(6.5, 0.5, 2, 1_000_002, 2, 2);
-        assert!((p - 0.019600).abs() < 2e-4, "{p}");
-        // One of two on a bound: 1/2 chi2(1) + 1/2 chi2(2) = 0.032047.
-        let p = f_test(6.5, 0.5, 2, 1_000_002, 2, 1);
-        assert!((p - 0.032047).abs() < 2e-4, "{p}");
-        // None on a bound: the plain chi2(2) tail.
-        let p = f_test(6.5, 0.5, 2, 1_000_002, 2, 0);
-        assert!((p - 0.049787).abs() < 2e-4, "{p}");
-        // The mechanisms' own counts: friction has both, the edge its one, softening none; the
-        // built-up edge counts only its fitted rake shift (the onset is chosen on a grid).
-        assert_eq!(boundary_params(MechanismId::ToolChipFriction), 2);
-        assert_eq!(boundary_params(MechanismId::EdgePloughing), 1);
-        assert_eq!(boundary_params(MechanismId::ThermalSoftening), 0);
-        assert_eq!(boundary_params(MechanismId::BuiltUpEdge), 1);
-        assert_eq!(boundary_params(MechanismId::ForceCrosstalk), 0);
-        // The size effect's strength l sits at its bound; its shapes w_chip and w_ref are not tested.
-        assert_eq!(boundary_params(MechanismId::SizeEffect), 1);
-        assert_eq!(shape_params(MechanismId::SizeEffect), 2);
-        assert_eq!(shape_params(MechanismId::FlankWear), 1);
-        assert_eq!(shape_params(MechanismId::ToolChipFriction), 1);
-    }
-
-    #[test]
-    fn f_test_never_takes_the_residual_variance_below_the_noise() {
-        // n = 31, k1 = 1: df2 = 30. A fit far closer than the noise (rss1 = 0.01) improving the
-        // RSS by 3.0 noise units: the variance is floored at 1, so F = 3.0 and, as F(1, 30) = t(30)^2,
-        // p is the two-sided t(30) tail at sqrt(3) = 1.732, between the table's 0.10 (t = 1.697)
-        // and 0.05 (t = 2.042), about 0.094. Without the floor F would be 9000 and p ~ 1e-35.
-        let p = f_test(3.01, 0.01, 1, 31, 1, 0);
-        assert!(p > 0.09 && p < 0.10, "{p}");
-        // At or above the noise the data's own variance is used: rss1 = 60 on 30 df gives s2 = 2,
-        // F = 30 / 2 = 15; one-sided halving for a one-sided parameter.
-        let two = f_test(90.0, 60.0, 1, 31, 1, 0);
-        let one = f_test(90.0, 60.0, 1, 31, 1, 1);
-        assert!((one - 0.5 * two).abs() < 1e-15 && two < 1e-3 && two > 1e-4, "{two}");
-    }
 }

@@ -9,7 +9,7 @@
 //! |---|---|---|---|
 //! | edge_ploughing | effective rake of the rounded edge's chord (after Manjunathaiah & Endres 2000, Kountanya & Endres 2001) inside the solve, plus a small flank rubbing force | Albrecht's additive arc forces | Waldorf slip-line plus the chord effective rake from the stagnation point |
 //! | flank_wear | land stress decaying exponentially behind the edge, hybrid Coulomb-Tresca shear; VB growing by Usui's wear rate sigma V exp(-lambda / T) | uniform land stress, Taylor growth | Smithey land, VB linear in order |
-//! | tool_chip_friction | tau = min(mu sigma_N, k_chip), mu = mu0 / (1 + V_c / V_0), blended in (strength beyond 1 lowers mu) | Zorev stick-slip, mu0 V_c^-q | m_f0 (V/V_ref)^-p_v on k_chip |
+//! | tool_chip_friction | tau = min(mu sigma_N, k_chip), mu = mu0 / (1 + V_c / V_0), blended in (strength beyond 1 lowers mu) | Zorev stick-slip, mu0 V_c^-q | m_f0 (V/V_ref)^-p_v on k_chip, or as a hybrid Coulomb-Tresca cap over the baseline's F/N |
 //! | thermal_softening | TANH strain-temperature softening (Calamaz, Coupard & Girot 2008) | Zerilli-Armstrong exp(-c3 T*) | kappa_T and JC m scale |
 //! | heat_partition | Weiner's shear-plane partition and a Péclet-dependent tool share (after Tian & Kennedy 1994) | Loewen-Shaw R1 and 1 - R2 | Boothroyd-beta scale, constant share |
 //! | size_effect | primary zone only, k_AB (1 + h_s / h) (after Backer, Marshall & Shaw 1952) | Kienzle power law on every flow stress | Nix-Gao sqrt(1 + l/h), the share w_ref of it at the dataset's mean thickness held by the simulation (thirty-second session) |

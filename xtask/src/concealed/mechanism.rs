@@ -6,7 +6,7 @@
 //! |---|---|---|
 //! | edge_ploughing | Albrecht 1960: pressure p = (1 + pi/2) k and friction m_e k on the rounded edge below the stagnation point | Waldorf, DeVor & Kapoor 1998 slip-line, and the chord effective rake from the stagnation point |
 //! | flank_wear | uniform normal and shear stress on the land (Teitenberg, Bayoumi & Yucesan 1992), VB growing with cumulative cut length at a Taylor-type speed exponent | Smithey, Kapoor & DeVor 2001, VB linear in order |
-//! | tool_chip_friction | Zorev 1963 stick-slip with a power-law normal stress and a sliding-speed dependent mu (family c: replacing its Coulomb-Tresca law, Zorev's a = 0) | m_f0 (V/V_ref)^-p_v on k_chip |
+//! | tool_chip_friction | Zorev 1963 stick-slip with a power-law normal stress and a sliding-speed dependent mu (family c: replacing its Coulomb-Tresca law, Zorev's a = 0) | m_f0 (V/V_ref)^-p_v on k_chip, or as a hybrid Coulomb-Tresca cap over the baseline's F/N |
 //! | thermal_softening | extra Zerilli-Armstrong exponential thermal factor exp(-c3 (T - Tr)) | kappa_T on (T - T_w) and a scale on the JC m |
 //! | heat_partition | family a: Loewen & Shaw 1954 shear-plane partition and tool share of the frictional heat blended in; family b: Boothroyd 1963 and all frictional heat to the chip blended in; family c: Boothroyd 1963 (from Weiner 1955) and the Loewen-Shaw tool share blended in | scale on Boothroyd beta and a constant interface share |
 //! | size_effect | Kienzle 1952 power law (h / h_ref)^-m_s on the flow stress | Nix-Gao sqrt(1 + l/h), the share w_ref of it at the dataset's mean thickness held by the simulation (thirty-second session) |

@@ -1,5 +1,6 @@
 //! The tool-chip friction law of the friction mechanism (design note M4, M5): the shear factor
-//! `m_f0 (V / V_ref)^(-p_v)` and its Coulomb share, the hybrid Coulomb-Tresca cap.
+//! `m_f0 (V / V_ref)^(-p_v)` and its second form, the hybrid Coulomb-Tresca cap
+//! (`screen::coulomb_form` refits both and keeps the better).
 
 /// Speed-dependent interface friction factor `m_f0 (V / V_ref)^(-p_v)` (design note M5, the power
 /// law in V; Rech, Claudin & D'Eramo 2009 measured friction falling with sliding speed).
@@ -10,7 +11,8 @@ pub fn friction_factor(m_f0: f64, p_v: f64, speed_m_min: f64, v_ref_m_min: f64) 
 
 /// The interface friction factor of a test whose baseline friction load is `load` (its apparent
 /// coefficient `k_chip / sigma_N` over the dataset's largest, `Context::friction_load`), with the
-/// Coulomb share `w_c`: `min(1, m (1 / load)^w_c)`, `m` from [`friction_factor`].
+/// Coulomb share `w_c` (the mechanism uses 0 or 1, `Context::friction_coulomb`):
+/// `min(1, m (1 / load)^w_c)`, `m` from [`friction_factor`].
 ///
 /// At `w_c = 0` the factor is the constant (or speed-dependent) `m` of the shear-factor law. At
 /// `w_c = 1` it is the hybrid Coulomb-Tresca law `tau_int = min(mu sigma_N, k_chip)` (Zorev 1963;
@@ -18,7 +20,8 @@ pub fn friction_factor(m_f0: f64, p_v: f64, speed_m_min: f64, v_ref_m_min: f64) 
 /// mu_max`: the interface slides where the baseline needs more than `mu` to stick (the test of
 /// largest load, a cool chip on a hard primary zone) and sticks, unchanged, where it needs less.
 /// Taken at the baseline's stresses (the first step of the fixed point; the cap lowers the chip's
-/// temperature and so raises `k_chip` a little). At `m = 1` the factor is 1 for every `w_c`.
+/// temperature and so raises `k_chip` a little, which the twenty-seventh session measured as a
+/// narrower range of factors when solved: 0.82-1 against 0.57-1). At `m = 1` the factor is 1 for every `w_c`.
 #[must_use]
 pub fn hybrid_friction_factor(m: f64, load: f64, w_c: f64) -> f64 {
     (m * load.clamp(1e-3, 1.0).powf(-w_c.clamp(0.0, 1.0))).min(1.0)

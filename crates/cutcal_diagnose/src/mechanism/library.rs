@@ -59,21 +59,19 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             // lower bound 0.2 of m_f0 admits the mean Zorev interface shear of note M4 with a short
             // sticking zone (a sticking fraction 0.2 and mu = 0.25 under its sigma_n = sigma_max
             // (1 - x/l_c)^2.5 give about 0.28 k_chip); p_v <= 0.5 is note M5's range.
-            // w_c (thirty-third session) is the Coulomb share of the law: 0 = the shear-factor
-            // law m_f k_chip, 1 = the hybrid Coulomb-Tresca law min(mu sigma_N, k_chip) of DEFORM
-            // and Abaqus (Oezel 2006), which slides where the baseline interface needs the most
+            // Two forms of the law (thirty-third session), each refitted and the lower objective
+            // kept (`screen::coulomb_form`, `Context::friction_coulomb`): the shear-factor law
+            // m_f k_chip, and the hybrid Coulomb-Tresca law min(mu sigma_N, k_chip) of DEFORM and
+            // Abaqus (Oezel 2006), which slides where the baseline interface needs the most
             // friction to stick (a cool chip on a hard primary zone: thin cuts, low speeds) and
-            // sticks unchanged where it needs little (`mechanism::hybrid_friction_factor`). A
-            // shape parameter: no effect at m_f0 = 1, p_v = 0 (`screen::shape_params`). Without it
-            // a hybrid law's reduction, largest on the coolest interfaces, was named a built-up
-            // edge (family o, OxleyPython: 3 of 12 frictions named).
-            params: vec![
-                p("m_f0", "-", 0.2, 1.0, 1.0, 0.85),
-                p("p_v", "-", 0.0, 0.5, 0.0, 0.15),
-                p("w_c", "-", 0.0, 1.0, 0.0, 1.0),
-            ],
+            // sticks unchanged where it needs little (`mechanism::hybrid_friction_factor`). With
+            // the shear-factor law alone a hybrid law's reduction, largest on the coolest
+            // interfaces, was named a built-up edge (family o, OxleyPython: 2-4 of 12 frictions
+            // named). The same two parameters in both: the form is a choice between two models,
+            // as between two mechanisms, not a third parameter.
+            params: vec![p("m_f0", "-", 0.2, 1.0, 1.0, 0.85), p("p_v", "-", 0.0, 0.5, 0.0, 0.15)],
             hook: Some(Hook::FrictionFactor),
-            signature: "Fc - (mild), Ft --, chip thinner; Ft/Fc falling with ln V when p_v > 0; with a Coulomb share (w_c > 0) most where the baseline's apparent friction F/N is highest",
+            signature: "Fc - (mild), Ft --, chip thinner; Ft/Fc falling with ln V when p_v > 0; with the hybrid Coulomb-Tresca form most where the baseline's apparent friction F/N is highest",
             covariates: "none for m_f0; p_v needs at least two speeds",
             confounders: &[M::ThermalSoftening, M::ForceCrosstalk],
             separate_by: "measure the chip thickness (mass-based) and the contact length; a channel-gain error does not move the chip",
