@@ -1,7 +1,8 @@
 //! Screen and refit (design note Sec 3.3-3.4): absorbability-aware score tests of each remaining
 //! mechanism at the current fit (Rao 1948 score test, projected on the directions the baseline can
 //! absorb), which order them, then a joint refit of every one with its F-test (chi-bar-square mixture for
-//! parameters whose off value sits on a bound, Self & Liang 1987) and 95 % Wald intervals.
+//! parameters whose off value sits on a bound, Self & Liang 1987; `crate::ftest`) and 95 % Wald
+//! intervals. Friction is refitted in both forms of its law and the better kept (`coulomb_form`).
 
 use nalgebra::{DMatrix, DVector};
 
