@@ -27,9 +27,9 @@ pub struct Context {
     /// coefficient below which a Coulomb law caps the interface shear. The hybrid friction law's
     /// shape (`mechanism::hybrid_friction_factor`; Oezel 2006).
     pub friction_load: Option<Vec<f64>>,
-    /// The friction law's form, chosen by the refit: 0 = the shear-factor law, 1 = the hybrid
-    /// Coulomb-Tresca law on `friction_load` (`mechanism::hybrid_friction_factor`).
-    pub friction_coulomb: f64,
+    /// The friction law's form, chosen by the refit: false = the shear-factor law, true = the
+    /// hybrid Coulomb-Tresca law on `friction_load` (`mechanism::hybrid_friction_factor`).
+    pub friction_coulomb: bool,
     /// Reference speed of the speed-dependent friction factor, m/min: the geometric mean of the
     /// test speeds of the whole dataset (kept in folds, so that m_f0 means the same in each).
     pub friction_v_ref_m_min: f64,
@@ -92,7 +92,7 @@ impl Context {
             bue_onset: 0.0,
             bue_gate_c: None,
             friction_load: None,
-            friction_coulomb: 0.0,
+            friction_coulomb: false,
             friction_v_ref_m_min,
             size_h_ref_m,
             edge_shape,

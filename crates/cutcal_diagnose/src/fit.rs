@@ -260,6 +260,13 @@ impl FitStatus {
         matches!(self, Self::Converged | Self::NothingToFit)
     }
 
+    /// Whether a refit can be tested: something was fitted, and not only by the damped rerun of
+    /// [`FitStatus::ShortRetry`] (an iteration cap is reported, not refused).
+    #[must_use]
+    pub fn is_usable(self) -> bool {
+        !matches!(self, Self::Underdetermined | Self::ShortRetry(_))
+    }
+
     /// A short description for reports, `None` when the fit converged.
     #[must_use]
     pub fn note(self) -> Option<String> {

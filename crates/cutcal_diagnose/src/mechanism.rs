@@ -150,7 +150,7 @@ pub fn set_hooks(
             MechanismId::ToolChipFriction => {
                 let m = friction_factor(phi[0], phi[1], t.speed_m_per_s * 60.0, ctx.friction_v_ref_m_min);
                 let load = ctx.friction_load.as_ref().map_or(1.0, |l| l[i]);
-                h.friction_factor *= hybrid_friction_factor(m, load, ctx.friction_coulomb);
+                h.friction_factor *= hybrid_friction_factor(m, load, f64::from(u8::from(ctx.friction_coulomb)));
             }
             MechanismId::ThermalSoftening => {
                 h.extra_softening += phi[0];

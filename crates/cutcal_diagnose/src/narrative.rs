@@ -50,7 +50,7 @@ pub(crate) fn result_of(
         params.insert(
             "w_c".into(),
             ParamValue {
-                value: c.spec.ctx.friction_coulomb,
+                value: f64::from(u8::from(c.spec.ctx.friction_coulomb)),
                 unit: "-".into(),
                 ci_low: None,
                 ci_high: None,

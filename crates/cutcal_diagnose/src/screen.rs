@@ -150,7 +150,7 @@ pub(crate) fn screen_and_refit(
         };
         let f = nested_floor(pr, &s, current, f);
         let f = coulomb_form(pr, &mut s, &x0, current, f);
-        if matches!(f.status, fit::FitStatus::Underdetermined | fit::FitStatus::ShortRetry(_)) {
+        if !f.status.is_usable() {
             let why = f.status.note().unwrap_or_default();
             lost.push(NotTestable { id: s.id.as_str().into(), reason: format!("refit not usable: {why}") });
             continue;
@@ -292,21 +292,20 @@ fn nested_floor(pr: &Problem<'_>, s: &Screened, current: &Fit, f: Fit) -> Fit {
     }
 }
 
-/// Friction's second form, the hybrid Coulomb-Tresca law (`Context::friction_coulomb` = 1), refitted
+/// Friction's second form, the hybrid Coulomb-Tresca law (`Context::friction_coulomb`), refitted
 /// beside the shear-factor form `f` of `s`; the lower objective is kept and `s` takes its spec. The
 /// two forms have the same parameters, so the choice is between two candidate models, as between
 /// two mechanisms (the calibrated null makes the same choice in every replicate).
 fn coulomb_form(pr: &Problem<'_>, s: &mut Screened, x0: &[f64], current: &Fit, f: Fit) -> Fit {
     let ctx = &s.spec.ctx;
-    if s.id != MechanismId::ToolChipFriction || ctx.friction_load.is_none() || ctx.friction_coulomb > 0.0 {
+    if s.id != MechanismId::ToolChipFriction || ctx.friction_load.is_none() || ctx.friction_coulomb {
         return f;
     }
     let mut alt = s.clone();
-    alt.spec.ctx.friction_coulomb = 1.0;
+    alt.spec.ctx.friction_coulomb = true;
     let Ok(g) = pr.fit(&alt.spec, Some(x0)) else { return f };
     let g = nested_floor(pr, &alt, current, g);
-    let usable = !matches!(g.status, fit::FitStatus::Underdetermined | fit::FitStatus::ShortRetry(_));
-    if usable && g.objective() < f.objective() {
+    if g.status.is_usable() && g.objective() < f.objective() {
         *s = alt;
         g
     } else {

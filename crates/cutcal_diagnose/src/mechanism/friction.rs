@@ -11,7 +11,7 @@ pub fn friction_factor(m_f0: f64, p_v: f64, speed_m_min: f64, v_ref_m_min: f64) 
 
 /// The interface friction factor of a test whose baseline friction load is `load` (its apparent
 /// coefficient `k_chip / sigma_N` over the dataset's largest, `Context::friction_load`), with the
-/// Coulomb share `w_c` (the mechanism uses 0 or 1, `Context::friction_coulomb`):
+/// Coulomb share `w_c` (the mechanism uses 0 or 1 as `Context::friction_coulomb` is false or true):
 /// `min(1, m (1 / load)^w_c)`, `m` from [`friction_factor`].
 ///
 /// At `w_c = 0` the factor is the constant (or speed-dependent) `m` of the shear-factor law. At
