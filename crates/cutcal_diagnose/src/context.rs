@@ -17,6 +17,9 @@ pub struct Context {
     /// Built-up-edge onset on the gate coordinate (chosen on a grid by the fitter): the interface
     /// temperature, degC, when `bue_gate_c` is set, else the speed, m/min.
     pub bue_onset: f64,
+    /// Built-up-edge floor on the gate coordinate (0: none): with one, the edge forms in the band
+    /// between floor and onset (`mechanism::bue_gates`).
+    pub bue_floor: f64,
     /// The baseline's tool-chip interface temperature per test, degC, when the simulator gives it at
     /// every test: the built-up edge is then gated by it (it forms on a cool interface and
     /// disappears as the interface heats, Trent & Wright 2000), else by the speed.
@@ -90,6 +93,7 @@ impl Context {
             wear_state,
             vb_tests_smoothed,
             bue_onset: 0.0,
+            bue_floor: 0.0,
             bue_gate_c: None,
             friction_load: None,
             friction_coulomb: false,
@@ -135,6 +139,7 @@ impl Context {
         Self {
             wear_state: self.wear_state.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             bue_onset: self.bue_onset,
+            bue_floor: self.bue_floor,
             bue_gate_c: self.bue_gate_c.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             friction_load: self.friction_load.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             friction_coulomb: self.friction_coulomb,

@@ -3,6 +3,7 @@
 //! which only shape a mechanism (no numerator degree of freedom), which are chosen on a grid
 //! (counted in the AICc), and the cosine of two fitted corrections (the ambiguity rule).
 
+use crate::context::Context;
 use crate::mechanism::{info, MechanismId};
 use crate::stats;
 
@@ -38,12 +39,16 @@ pub(crate) fn tested_df(id: MechanismId, added: usize) -> usize {
     added.saturating_sub(shape_params(id))
 }
 
-/// Parameters of a mechanism chosen on a grid rather than fitted (the built-up-edge onset): they
-/// count in the AICc as any fitted parameter does (Burnham & Anderson 2002, Sec 2.2: K is every
-/// estimated parameter), so that a mechanism with a grid-chosen gate has no advantage over one
-/// whose second parameter is fitted.
-pub(crate) fn grid_chosen(id: MechanismId) -> usize {
-    usize::from(id == MechanismId::BuiltUpEdge)
+/// Parameters of a mechanism chosen on a grid rather than fitted (the built-up-edge onset, and its
+/// floor when the gate is a band, `Context::bue_floor`): they count in the AICc as any fitted
+/// parameter does (Burnham & Anderson 2002, Sec 2.2: K is every estimated parameter), so that a
+/// mechanism with a grid-chosen gate has no advantage over one whose second parameter is fitted.
+pub(crate) fn grid_chosen(id: MechanismId, ctx: &Context) -> usize {
+    if id == MechanismId::BuiltUpEdge {
+        1 + usize::from(ctx.bue_floor > 0.0)
+    } else {
+        0
+    }
 }
 
 /// Binomial coefficient for the small counts of the mixture weights.

@@ -55,7 +55,7 @@ pub(crate) fn heldout_round(
             let f = &fold[s + 1];
             let d = f.k - fold[0].k;
             let p = f_test(nb, f.rss, tested_df(cands[i].id, d), n_tr, f.k, boundary_params(cands[i].id));
-            let a = stats::aicc(f.objective(), n_tr, f.k + grid_chosen(cands[i].id));
+            let a = stats::aicc(f.objective(), n_tr, f.k + grid_chosen(cands[i].id, &cands[i].spec.ctx));
             if p < alpha_round && best.is_none_or(|(b, _)| a < b) {
                 best = Some((a, s + 1));
             }

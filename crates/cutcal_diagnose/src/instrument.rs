@@ -251,7 +251,7 @@ pub(crate) fn stops_claim(
     let da = a.aicc(n) - base_aicc;
     let beyond = fit_artefact(pr, &c.spec, &c.fit.x, a.artefact, a.g, a.prior).map(|j| {
         let d = tested_df(c.id, j.k.saturating_sub(a.k));
-        f_test(a.rss, j.rss, d, n, j.k + grid_chosen(c.id), boundary_params(c.id))
+        f_test(a.rss, j.rss, d, n, j.k + grid_chosen(c.id, &c.spec.ctx), boundary_params(c.id))
     });
     let id = c.id.as_str();
     if let Some(p) = beyond.filter(|p| p.is_finite() && *p < alpha) {

@@ -19,7 +19,7 @@ use crate::simulator::{Prediction, Simulator};
 mod bue;
 mod friction;
 mod library;
-pub use bue::{bue_indicator, bue_onsets};
+pub use bue::{bue_gate, bue_gates, bue_indicator, bue_onsets};
 pub use friction::{friction_factor, hybrid_friction_factor};
 pub use library::info;
 
@@ -165,7 +165,8 @@ pub fn set_hooks(
                 h.friction_factor *= nix_gao(phi[0], t).powf(phi[1] - 1.0);
             }
             MechanismId::BuiltUpEdge => {
-                h.rake_shift_rad += phi[0].to_radians() * bue_indicator(ctx.bue_coordinate(tests, i), ctx.bue_onset)
+                h.rake_shift_rad +=
+                    phi[0].to_radians() * bue_gate(ctx.bue_coordinate(tests, i), ctx.bue_onset, ctx.bue_floor)
             }
             _ => {}
         }

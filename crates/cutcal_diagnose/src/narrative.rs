@@ -44,6 +44,15 @@ pub(crate) fn result_of(
             name.into(),
             ParamValue { value: v, unit: unit.into(), ci_low: None, ci_high: None, ci_note: note.into() },
         );
+        let floor = c.spec.ctx.bue_floor;
+        if floor > 0.0 {
+            let (name, unit) = if c.spec.ctx.bue_gate_c.is_some() { ("t_floor", "degC") } else { ("v_floor", "m/min") };
+            let note = "lower end of the band in which the edge forms, chosen on a grid of the tests' values";
+            params.insert(
+                name.into(),
+                ParamValue { value: floor, unit: unit.into(), ci_low: None, ci_high: None, ci_note: note.into() },
+            );
+        }
     }
     if c.id == MechanismId::ToolChipFriction && c.spec.ctx.friction_load.is_some() {
         let note = "the law's form, chosen by the refit's objective: 0 = shear factor m_f k_chip, 1 = hybrid Coulomb-Tresca min(mu sigma_N, k_chip)";

@@ -9,7 +9,7 @@ use nalgebra::{DMatrix, DVector};
 use crate::error::DiagnoseError;
 use crate::fit::{self, data_jacobian, project_out, Fit, Spec};
 pub(crate) use crate::ftest::{boundary_params, cosine, f_test, grid_chosen, shape_params, tested_df};
-use crate::mechanism::{bue_onsets, info, softening_conflict, MechanismId};
+use crate::mechanism::{bue_gates, info, softening_conflict, MechanismId};
 use crate::problem::{Candidate, Problem};
 use crate::report::*;
 use crate::stats;
@@ -52,13 +52,15 @@ pub(crate) fn screen_and_refit(
     let s2 = if dof > 0 { (current.rss / dof as f64).max(1e-12) } else { 1.0 };
     let mut screened = Vec::new();
     for &m in remaining {
-        let onsets = if m == MechanismId::BuiltUpEdge { bue_onsets(pr.tests, &current_spec.ctx) } else { vec![0.0] };
+        let onsets =
+            if m == MechanismId::BuiltUpEdge { bue_gates(pr.tests, &current_spec.ctx) } else { vec![(0.0, 0.0)] };
         let mut best: Option<Screened> = None;
         let mut screen_error: Option<String> = None;
-        for onset in onsets {
+        for (onset, floor) in onsets {
             let mut ctx = current_spec.ctx.clone();
             if m == MechanismId::BuiltUpEdge {
                 ctx.bue_onset = onset;
+                ctx.bue_floor = floor;
             }
             let mut mechs = current_spec.mechanisms.clone();
             mechs.push(m);
@@ -164,8 +166,8 @@ pub(crate) fn screen_and_refit(
         // Anderson 2002, Sec 2.2: AIC on the maximised likelihood, which here includes the prior's
         // pseudo-observations).
         let p = f_test(current.rss, f.rss, tested_df(s.id, d), n, f.k, boundary_params(s.id));
-        let grid_now = current_spec.mechanisms.iter().map(|m| grid_chosen(*m)).sum::<usize>();
-        let daicc = stats::aicc(f.objective(), n, f.k + grid_now + grid_chosen(s.id))
+        let grid_now = current_spec.mechanisms.iter().map(|m| grid_chosen(*m, &current_spec.ctx)).sum::<usize>();
+        let daicc = stats::aicc(f.objective(), n, f.k + grid_now + grid_chosen(s.id, &s.spec.ctx))
             - stats::aicc(current.objective(), n, current.k + grid_now);
         let explained = if current.rss > 0.0 { 1.0 - f.rss / current.rss } else { 0.0 };
         // 95 % Wald interval of the mechanism parameters from the joint covariance.

@@ -35,6 +35,43 @@ pub fn bue_onsets(tests: &[CuttingTest], ctx: &Context) -> Vec<f64> {
     (0..8).map(|k| all[k * (all.len() - 1) / 7]).collect()
 }
 
+/// Candidate gates `(onset, floor)` of the built-up edge: every onset of [`bue_onsets`] with no
+/// floor (`0`: the edge down to the coolest test), and with up to three floors below it, the
+/// geometric midpoints that leave at least two gate values below the floor and two between floor
+/// and onset. A floor makes the edge a band on the gate coordinate: the edge's height rises from
+/// the lowest speeds to a peak and vanishes on a hot interface (Trent & Wright 2000, Sec 5.3;
+/// Childs et al. 2000, Sec 1.4).
+#[must_use]
+pub fn bue_gates(tests: &[CuttingTest], ctx: &Context) -> Vec<(f64, f64)> {
+    let mut v: Vec<f64> = (0..tests.len()).map(|i| ctx.bue_coordinate(tests, i)).filter(|x| *x > 0.0).collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-3 * b.abs());
+    let mut out = Vec::new();
+    for onset in bue_onsets(tests, ctx) {
+        out.push((onset, 0.0));
+        let below = v.iter().filter(|x| **x < onset).count();
+        let floors: Vec<f64> = (1..below.saturating_sub(2)).map(|j| (v[j] * v[j + 1]).sqrt()).collect();
+        let picks = floors.len().min(3);
+        for k in 0..picks {
+            let idx = if picks == 1 { 0 } else { k * (floors.len() - 1) / (picks - 1) };
+            out.push((onset, floors[idx]));
+        }
+    }
+    out
+}
+
+/// The built-up edge's gate at `coordinate`: [`bue_indicator`] below the onset, times the rise
+/// above the floor when there is one (`floor > 0`).
+#[must_use]
+pub fn bue_gate(coordinate: f64, onset: f64, floor: f64) -> f64 {
+    let upper = bue_indicator(coordinate, onset);
+    if floor > 0.0 {
+        upper * (1.0 - bue_indicator(coordinate, floor))
+    } else {
+        upper
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -55,6 +92,41 @@ mod tests {
         let mut ctx3 = Context::of(&tests3);
         ctx3.bue_gate_c = Some(vec![400.0, 500.0, 600.0]);
         assert_eq!(bue_onsets(&tests3, &ctx3), vec![(400.0f64 * 500.0).sqrt()]);
+    }
+
+    #[test]
+    fn bue_gates_add_floors_that_leave_two_values_below_and_two_in_the_band() {
+        // Nine interface temperatures 400, 450, ..., 800 degC and the six onsets above. An onset
+        // with b gate values below it takes the floors between values j and j + 1 for j = 1..b-3
+        // (two values below the floor, two in the band): none for b = 1, 2, 3; one for b = 4
+        // (sqrt(450 * 500)); two for b = 5; three for b = 6. 6 + 1 + 2 + 3 = 12 gates.
+        let t = |i: usize| CuttingTest::new(format!("t{i}"), 2.0, 0.1e-3, 1e-3, 0.0).unwrap();
+        let tests: Vec<CuttingTest> = (0..9).map(t).collect();
+        let mut ctx = Context::of(&tests);
+        ctx.bue_gate_c = Some((0..9).map(|i| 400.0 + 50.0 * i as f64).collect());
+        let g = bue_gates(&tests, &ctx);
+        assert_eq!(g.len(), 12, "{g:?}");
+        let mid = |a: f64, b: f64| (a * b).sqrt();
+        assert!(g.contains(&(mid(550.0, 600.0), mid(450.0, 500.0))));
+        assert!(g.contains(&(mid(650.0, 700.0), mid(550.0, 600.0))));
+        assert!(!g.contains(&(mid(650.0, 700.0), mid(600.0, 650.0))), "one value in the band");
+        assert!(!g.contains(&(mid(650.0, 700.0), mid(400.0, 450.0))), "one value below the floor");
+        assert_eq!(g.iter().filter(|(_, f)| *f == 0.0).count(), 6);
+    }
+
+    #[test]
+    fn bue_gate_is_a_band_with_a_floor() {
+        // Onset 700, floor 500 degC (logistic width 0.1 in ln T, so each indicator is
+        // 1 / (1 + (T / T_0)^10)): half the upper indicator at the floor; at 600 degC
+        // 1 / (1 + (6/7)^10) x (1 - 1 / (1 + (6/5)^10)) = 0.823684 x 0.860952 = 0.709152; at 400 degC
+        // the floor's indicator is 1 / (1 + 0.8^10) = 1 - 1 / (1 + 1.25^10); near 0 at 400 and 800 degC.
+        assert!((bue_gate(500.0, 700.0, 500.0) - 0.5 * bue_indicator(500.0, 700.0)).abs() < 1e-12);
+        assert!((bue_gate(600.0, 700.0, 500.0) - 0.709_152).abs() < 1e-6, "{}", bue_gate(600.0, 700.0, 500.0));
+        let below = 1.0 - 1.0 / (1.0 + (10.0 * 1.25f64.ln()).exp());
+        assert!((bue_gate(400.0, 700.0, 500.0) - bue_indicator(400.0, 700.0) * (1.0 - below)).abs() < 1e-12);
+        assert!(bue_gate(400.0, 700.0, 500.0) < 0.1 && bue_gate(800.0, 700.0, 500.0) < 0.3);
+        // No floor: the one-sided gate.
+        assert_eq!(bue_gate(400.0, 700.0, 0.0), bue_indicator(400.0, 700.0));
     }
 
     #[test]

