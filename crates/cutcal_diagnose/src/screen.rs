@@ -56,6 +56,9 @@ pub(crate) fn screen_and_refit(
             if m == MechanismId::BuiltUpEdge { bue_gates(pr.tests, &current_spec.ctx) } else { vec![(0.0, 0.0)] };
         let mut best: Option<Screened> = None;
         let mut screen_error: Option<String> = None;
+        // At its off value (d_alpha = 0) the built-up edge has no effect whatever its gate, so the
+        // off-value residuals are computed once for all its gates.
+        let mut r0_gate_free: Option<Vec<f64>> = None;
         for (onset, floor) in onsets {
             let mut ctx = current_spec.ctx.clone();
             if m == MechanismId::BuiltUpEdge {
@@ -69,15 +72,24 @@ pub(crate) fn screen_and_refit(
             let d = fit::fitted_len(m);
             let mut s = DMatrix::zeros(n, d);
             let x = nested_point(&current.x, m);
-            let p0 = match fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &x) {
-                Ok(p0) => p0,
-                Err(e) => {
-                    screen_error =
-                        Some(format!("screen: the model has no solution with the mechanism at its off value ({e})"));
-                    continue;
+            let r0 = if let Some(r) = &r0_gate_free {
+                r.clone()
+            } else {
+                let p0 = match fit::predict(pr.sim, pr.tests, &spec, &spec.ctx, &x) {
+                    Ok(p0) => p0,
+                    Err(e) => {
+                        screen_error = Some(format!(
+                            "screen: the model has no solution with the mechanism at its off value ({e})"
+                        ));
+                        continue;
+                    }
+                };
+                let r = fit::residuals(&pr.obs, &p0, &noise);
+                if m == MechanismId::BuiltUpEdge {
+                    r0_gate_free = Some(r.clone());
                 }
+                r
             };
-            let r0 = fit::residuals(&pr.obs, &p0, &noise);
             let mut failed = false;
             for c in 0..d {
                 let pi = inf.params[c];
