@@ -52,14 +52,14 @@ pub(crate) fn screen_and_refit(
     let s2 = if dof > 0 { (current.rss / dof as f64).max(1e-12) } else { 1.0 };
     let mut screened = Vec::new();
     for &m in remaining {
-        let onsets =
+        let gates =
             if m == MechanismId::BuiltUpEdge { bue_gates(pr.tests, &current_spec.ctx) } else { vec![(0.0, 0.0)] };
         let mut best: Option<Screened> = None;
         let mut screen_error: Option<String> = None;
         // At its off value (d_alpha = 0) the built-up edge has no effect whatever its gate, so the
         // off-value residuals are computed once for all its gates.
         let mut r0_gate_free: Option<Vec<f64>> = None;
-        for (onset, floor) in onsets {
+        for (onset, floor) in gates {
             let mut ctx = current_spec.ctx.clone();
             if m == MechanismId::BuiltUpEdge {
                 ctx.bue_onset = onset;

@@ -9,9 +9,9 @@
 //! detector's logistic band on the interface temperature. Its share from the formula at h = 0.1 mm
 //! is 0.032, 0.511, 1.000, 0.550 and 0.141 at 60, 100, 150, 220 and 300 m/min; the peak is near
 //! 220 m/min at 0.05 mm and 100 m/min at 0.2 mm, and the slowest cut of each feed has at most 0.27
-//! of the edge. With the one-sided gate alone (before the
-//! thirty-fourth session) the same recordings were not named a built-up edge. The setup is that of
-//! `mode_a.rs` (C38 simulation, AISI 1045 shadow).
+//! of the edge. With the one-sided gate alone (before the thirty-fourth session) the same
+//! recordings came out `unexplained`. The setup is that of `mode_a.rs` (C38 simulation, AISI 1045
+//! shadow).
 
 mod common;
 

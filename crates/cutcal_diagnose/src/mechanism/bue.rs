@@ -14,6 +14,14 @@ pub fn bue_indicator(coordinate: f64, onset: f64) -> f64 {
     1.0 / (1.0 + ((coordinate.max(1e-9) / onset.max(1e-9)).ln() / 0.1).exp())
 }
 
+/// The distinct positive gate coordinates of the tests, ascending (values within 0.1 % are one).
+fn gate_values(tests: &[CuttingTest], ctx: &Context) -> Vec<f64> {
+    let mut v: Vec<f64> = (0..tests.len()).map(|i| ctx.bue_coordinate(tests, i)).filter(|x| *x > 0.0).collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-3 * b.abs());
+    v
+}
+
 /// Candidate built-up-edge onsets on the gate coordinate: geometric midpoints between its distinct
 /// values that leave at least a third of them (and at least two) out of the BUE regime; at most 8,
 /// evenly spread over the ranks. An edge over nearly every condition is a uniform rake change, which
@@ -21,9 +29,7 @@ pub fn bue_indicator(coordinate: f64, onset: f64) -> f64 {
 /// sides (with two above it, friction and softening datasets were named `built_up_edge`).
 #[must_use]
 pub fn bue_onsets(tests: &[CuttingTest], ctx: &Context) -> Vec<f64> {
-    let mut v: Vec<f64> = (0..tests.len()).map(|i| ctx.bue_coordinate(tests, i)).filter(|x| *x > 0.0).collect();
-    v.sort_by(f64::total_cmp);
-    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-3 * b.abs());
+    let v = gate_values(tests, ctx);
     if v.len() < 2 {
         return Vec::new();
     }
@@ -43,9 +49,7 @@ pub fn bue_onsets(tests: &[CuttingTest], ctx: &Context) -> Vec<f64> {
 /// Childs et al. 2000, Sec 1.4).
 #[must_use]
 pub fn bue_gates(tests: &[CuttingTest], ctx: &Context) -> Vec<(f64, f64)> {
-    let mut v: Vec<f64> = (0..tests.len()).map(|i| ctx.bue_coordinate(tests, i)).filter(|x| *x > 0.0).collect();
-    v.sort_by(f64::total_cmp);
-    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-3 * b.abs());
+    let v = gate_values(tests, ctx);
     let mut out = Vec::new();
     for onset in bue_onsets(tests, ctx) {
         out.push((onset, 0.0));
@@ -119,11 +123,12 @@ mod tests {
         // Onset 700, floor 500 degC (logistic width 0.1 in ln T, so each indicator is
         // 1 / (1 + (T / T_0)^10)): half the upper indicator at the floor; at 600 degC
         // 1 / (1 + (6/7)^10) x (1 - 1 / (1 + (6/5)^10)) = 0.823684 x 0.860952 = 0.709152; at 400 degC
-        // the floor's indicator is 1 / (1 + 0.8^10) = 1 - 1 / (1 + 1.25^10); near 0 at 400 and 800 degC.
+        // the floor's indicator is 1 / (1 + 0.8^10) = 0.903037; near 0 at 400 and 800 degC.
         assert!((bue_gate(500.0, 700.0, 500.0) - 0.5 * bue_indicator(500.0, 700.0)).abs() < 1e-12);
         assert!((bue_gate(600.0, 700.0, 500.0) - 0.709_152).abs() < 1e-6, "{}", bue_gate(600.0, 700.0, 500.0));
-        let below = 1.0 - 1.0 / (1.0 + (10.0 * 1.25f64.ln()).exp());
-        assert!((bue_gate(400.0, 700.0, 500.0) - bue_indicator(400.0, 700.0) * (1.0 - below)).abs() < 1e-12);
+        let floor_indicator = 1.0 / (1.0 + 0.8f64.powi(10));
+        assert!((floor_indicator - 0.903_037).abs() < 1e-6);
+        assert!((bue_gate(400.0, 700.0, 500.0) - bue_indicator(400.0, 700.0) * (1.0 - floor_indicator)).abs() < 1e-12);
         assert!(bue_gate(400.0, 700.0, 500.0) < 0.1 && bue_gate(800.0, 700.0, 500.0) < 0.3);
         // No floor: the one-sided gate.
         assert_eq!(bue_gate(400.0, 700.0, 0.0), bue_indicator(400.0, 700.0));
