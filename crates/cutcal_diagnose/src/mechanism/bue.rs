@@ -80,21 +80,25 @@ pub fn bue_gate(coordinate: f64, onset: f64, floor: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// One test per interface temperature in `temps_c` (same cut), with the gate set to them.
+    fn gated(temps_c: &[f64]) -> (Vec<CuttingTest>, Context) {
+        let t = |i: usize| CuttingTest::new(format!("t{i}"), 2.0, 0.1e-3, 1e-3, 0.0).unwrap();
+        let tests: Vec<CuttingTest> = (0..temps_c.len()).map(t).collect();
+        let mut ctx = Context::of(&tests);
+        ctx.bue_gate_c = Some(temps_c.to_vec());
+        (tests, ctx)
+    }
+
     #[test]
     fn bue_onsets_leave_a_third_of_the_gate_values_above() {
         // Nine interface temperatures 400, 450, ..., 800 degC: a third (3) must stay above the
         // onset, so the candidates are the 6 midpoints below the seventh value, the last one
         // sqrt(650 * 700); with three values, two stay above and one midpoint remains.
-        let t = |i: usize| CuttingTest::new(format!("t{i}"), 2.0, 0.1e-3, 1e-3, 0.0).unwrap();
-        let tests: Vec<CuttingTest> = (0..9).map(t).collect();
-        let mut ctx = Context::of(&tests);
-        ctx.bue_gate_c = Some((0..9).map(|i| 400.0 + 50.0 * i as f64).collect());
+        let (tests, ctx) = gated(&(0..9).map(|i| 400.0 + 50.0 * i as f64).collect::<Vec<_>>());
         let on = bue_onsets(&tests, &ctx);
         assert_eq!(on.len(), 6);
         assert!((on[5] - (650.0f64 * 700.0).sqrt()).abs() < 1e-9, "{on:?}");
-        let tests3: Vec<CuttingTest> = (0..3).map(t).collect();
-        let mut ctx3 = Context::of(&tests3);
-        ctx3.bue_gate_c = Some(vec![400.0, 500.0, 600.0]);
+        let (tests3, ctx3) = gated(&[400.0, 500.0, 600.0]);
         assert_eq!(bue_onsets(&tests3, &ctx3), vec![(400.0f64 * 500.0).sqrt()]);
     }
 
@@ -104,10 +108,7 @@ mod tests {
         // with b gate values below it takes the floors between values j and j + 1 for j = 1..b-3
         // (two values below the floor, two in the band): none for b = 1, 2, 3; one for b = 4
         // (sqrt(450 * 500)); two for b = 5; three for b = 6. 6 + 1 + 2 + 3 = 12 gates.
-        let t = |i: usize| CuttingTest::new(format!("t{i}"), 2.0, 0.1e-3, 1e-3, 0.0).unwrap();
-        let tests: Vec<CuttingTest> = (0..9).map(t).collect();
-        let mut ctx = Context::of(&tests);
-        ctx.bue_gate_c = Some((0..9).map(|i| 400.0 + 50.0 * i as f64).collect());
+        let (tests, ctx) = gated(&(0..9).map(|i| 400.0 + 50.0 * i as f64).collect::<Vec<_>>());
         let g = bue_gates(&tests, &ctx);
         assert_eq!(g.len(), 12, "{g:?}");
         let mid = |a: f64, b: f64| (a * b).sqrt();
