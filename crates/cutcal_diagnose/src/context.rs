@@ -24,6 +24,11 @@ pub struct Context {
     /// every test: the built-up edge is then gated by it (it forms on a cool interface and
     /// disappears as the interface heats, Trent & Wright 2000), else by the speed.
     pub bue_gate_c: Option<Vec<f64>>,
+    /// Whether the built-up edge is gated by the speed even though `bue_gate_c` is known (chosen
+    /// by the screen with the gate: an edge charted on the speed alone, as in the BUE maps of
+    /// Trent & Wright 2000, Fig 5.13, is not ordered by the interface temperature when the feed
+    /// varies).
+    pub bue_by_speed: bool,
     /// The baseline's apparent tool-chip friction coefficient per test over its largest value, in
     /// (0, 1], when the simulator gives both forces at every test: `mu_app = F/N = tan(alpha +
     /// atan(Ft/Fc))` (Merchant's force circle), which in Oxley's closure is `k_chip / sigma_N`, the
@@ -95,6 +100,7 @@ impl Context {
             bue_onset: 0.0,
             bue_floor: 0.0,
             bue_gate_c: None,
+            bue_by_speed: false,
             friction_load: None,
             friction_coulomb: false,
             friction_v_ref_m_min,
@@ -127,10 +133,19 @@ impl Context {
     }
 
     /// The built-up-edge gate coordinate of test `i` of `tests`: its interface temperature, degC,
-    /// when known, else its speed, m/min.
+    /// when known and not `bue_by_speed`, else its speed, m/min.
     #[must_use]
     pub fn bue_coordinate(&self, tests: &[CuttingTest], i: usize) -> f64 {
-        self.bue_gate_c.as_ref().map_or(tests[i].speed_m_per_s * 60.0, |g| g[i])
+        match (&self.bue_gate_c, self.bue_by_speed) {
+            (Some(g), false) => g[i],
+            _ => tests[i].speed_m_per_s * 60.0,
+        }
+    }
+
+    /// Whether the built-up edge's gate coordinate is the interface temperature (else the speed).
+    #[must_use]
+    pub fn bue_gated_by_temperature(&self) -> bool {
+        self.bue_gate_c.is_some() && !self.bue_by_speed
     }
 
     /// The context restricted to the tests at `indices` (for leave-one-condition-out folds).
@@ -141,6 +156,7 @@ impl Context {
             bue_onset: self.bue_onset,
             bue_floor: self.bue_floor,
             bue_gate_c: self.bue_gate_c.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
+            bue_by_speed: self.bue_by_speed,
             friction_load: self.friction_load.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             friction_coulomb: self.friction_coulomb,
             friction_v_ref_m_min: self.friction_v_ref_m_min,

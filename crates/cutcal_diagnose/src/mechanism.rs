@@ -19,7 +19,7 @@ use crate::simulator::{Prediction, Simulator};
 mod bue;
 mod friction;
 mod library;
-pub use bue::{bue_gate, bue_gates, bue_indicator, bue_onsets};
+pub use bue::{bue_coordinates, bue_gate, bue_gates, bue_indicator, bue_onsets};
 pub use friction::{friction_factor, hybrid_friction_factor};
 pub use library::info;
 

@@ -31,7 +31,7 @@ pub(crate) fn result_of(
     }
     if c.id == MechanismId::BuiltUpEdge {
         let v = c.spec.ctx.bue_onset;
-        let (name, unit, note) = if c.spec.ctx.bue_gate_c.is_some() {
+        let (name, unit, note) = if c.spec.ctx.bue_gated_by_temperature() {
             (
                 "t_onset",
                 "degC",
@@ -46,7 +46,8 @@ pub(crate) fn result_of(
         );
         let floor = c.spec.ctx.bue_floor;
         if floor > 0.0 {
-            let (name, unit) = if c.spec.ctx.bue_gate_c.is_some() { ("t_floor", "degC") } else { ("v_floor", "m/min") };
+            let (name, unit) =
+                if c.spec.ctx.bue_gated_by_temperature() { ("t_floor", "degC") } else { ("v_floor", "m/min") };
             let note = "lower end of the band in which the edge forms, chosen on a grid of the tests' values";
             params.insert(
                 name.into(),

@@ -64,6 +64,30 @@ pub fn bue_gates(tests: &[CuttingTest], ctx: &Context) -> Vec<(f64, f64)> {
     out
 }
 
+/// The gate coordinates the screen offers the built-up edge, as contexts: `ctx` itself, and with
+/// [`Context::bue_by_speed`] set when `ctx` is gated by the interface temperature, at least three
+/// speeds were tested and the speed orders the tests differently from the temperature (where it
+/// orders them alike, its gates are the same partitions of the tests). The choice is one more
+/// grid-chosen parameter of the gate (`ftest::grid_chosen`), and the calibrated null repeats it.
+#[must_use]
+pub fn bue_coordinates(tests: &[CuttingTest], ctx: &Context) -> Vec<Context> {
+    let mut out = vec![ctx.clone()];
+    if !ctx.bue_gated_by_temperature() {
+        return out;
+    }
+    let mut by_speed = ctx.clone();
+    by_speed.bue_by_speed = true;
+    let order = |c: &Context| {
+        let mut idx: Vec<usize> = (0..tests.len()).collect();
+        idx.sort_by(|&a, &b| c.bue_coordinate(tests, a).total_cmp(&c.bue_coordinate(tests, b)));
+        idx
+    };
+    if gate_values(tests, &by_speed).len() >= 3 && order(ctx) != order(&by_speed) {
+        out.push(by_speed);
+    }
+    out
+}
+
 /// The built-up edge's gate at `coordinate`: [`bue_indicator`] below the onset, times the rise
 /// above the floor when there is one (`floor > 0`).
 #[must_use]
@@ -140,5 +164,30 @@ mod tests {
         // Logistic in ln V with width 0.1: at V = onset it is 1/2; at V = 2 onset it is 1/(1 + e^6.93).
         assert!((bue_indicator(80.0, 80.0) - 0.5).abs() < 1e-12);
         assert!(bue_indicator(160.0, 80.0) < 1e-3 && bue_indicator(40.0, 80.0) > 0.999);
+    }
+
+    #[test]
+    fn the_speed_is_offered_as_a_gate_coordinate_where_it_orders_the_tests_otherwise() {
+        // Four cuts at 60, 90, 120 and 150 m/min. Interface temperatures rising with the speed
+        // order them alike: the temperature alone. The slowest cut hotter than the next two (a
+        // thicker cut) orders them otherwise: the speed as well, with the speed as its coordinate
+        // and one more grid-chosen parameter. Without a temperature the speed is the only one.
+        let tests: Vec<CuttingTest> = [60.0, 90.0, 120.0, 150.0]
+            .iter()
+            .enumerate()
+            .map(|(i, v)| CuttingTest::new(format!("t{i}"), v / 60.0, 0.1e-3, 1e-3, 0.0).unwrap())
+            .collect();
+        let mut ctx = Context::of(&tests);
+        ctx.bue_gate_c = Some(vec![500.0, 550.0, 600.0, 650.0]);
+        assert_eq!(bue_coordinates(&tests, &ctx).len(), 1);
+        ctx.bue_gate_c = Some(vec![620.0, 550.0, 600.0, 650.0]);
+        let c = bue_coordinates(&tests, &ctx);
+        assert_eq!(c.len(), 2);
+        assert!(c[0].bue_gated_by_temperature() && !c[1].bue_gated_by_temperature());
+        assert!((c[1].bue_coordinate(&tests, 0) - 60.0).abs() < 1e-9);
+        let grid = |c: &Context| crate::ftest::grid_chosen(crate::mechanism::MechanismId::BuiltUpEdge, c);
+        assert_eq!((grid(&c[0]), grid(&c[1])), (1, 2));
+        ctx.bue_gate_c = None;
+        assert_eq!(bue_coordinates(&tests, &ctx).len(), 1);
     }
 }
