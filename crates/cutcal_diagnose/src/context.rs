@@ -26,7 +26,7 @@ pub struct Context {
     pub bue_gate_c: Option<Vec<f64>>,
     /// Whether the built-up edge is gated by the speed even though `bue_gate_c` is known (chosen
     /// by the screen with the gate: an edge charted on the speed alone, as in the BUE maps of
-    /// Trent & Wright 2000, Fig 5.13, is not ordered by the interface temperature when the feed
+    /// Trent & Wright 2000, Sec 5.3, is not ordered by the interface temperature when the feed
     /// varies).
     pub bue_by_speed: bool,
     /// The baseline's apparent tool-chip friction coefficient per test over its largest value, in

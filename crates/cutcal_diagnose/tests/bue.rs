@@ -95,7 +95,7 @@ fn the_fixed_window_gives_its_shares_by_hand() {
 #[test]
 fn a_built_up_edge_charted_on_the_speed_alone_is_gated_by_the_speed() {
     // A 10 deg rake increase times `fixed_window`: an edge charted on the speed alone, as the BUE
-    // maps of Trent & Wright 2000 (Fig 5.13) are, present from 60 to 150 m/min at every feed and
+    // maps of Trent & Wright 2000 (Sec 5.3) are, present from 60 to 150 m/min at every feed and
     // nearly gone from 220 m/min. The interface temperature rises with the feed as well as the
     // speed, so no gate of it holds the same tests; the screen's second coordinate, the speed, is
     // chosen, and the report gives the onset in m/min between 150 and 220. With the temperature
