@@ -156,14 +156,7 @@ pub(crate) fn screen_and_refit(
         }
         match (best, screen_error) {
             (Some(mut b), _) => {
-                let chosen = gate_class(&b.spec.ctx);
-                let mut others: Vec<(f64, Context)> = best_of_class
-                    .into_iter()
-                    .enumerate()
-                    .filter_map(|(k, c)| c.filter(|_| b.id == MechanismId::BuiltUpEdge && k != chosen))
-                    .collect();
-                others.sort_by(|x, y| y.0.total_cmp(&x.0));
-                b.other_gates = others.into_iter().map(|(_, c)| c).collect();
+                b.other_gates = gate_alternatives(best_of_class, gate_class(&b.spec.ctx));
                 screened.push(b);
             }
             (None, Some(reason)) => lost.push(NotTestable { id: m.as_str().into(), reason }),
@@ -365,13 +358,34 @@ fn gate_class(ctx: &Context) -> usize {
     2 * usize::from(ctx.bue_by_speed) + usize::from(ctx.bue_floor > 0.0)
 }
 
-/// The built-up edge is refitted also at the best-scoring gate of each other class (one-sided or
-/// band, on the interface temperature or on the speed), and the fit with the lowest AICc is kept
-/// (the floor and the speed coordinate count as grid-chosen parameters, `grid_chosen`). The score
-/// is linearised at d_alpha = 0 and can prefer a gate whose refit explains less: a narrow band
-/// over the one-sided gate (family c of the concealed benchmark, seed 13131), or a speed gate over
-/// the temperature gate of an edge that follows the interface temperature (families a, b and d,
-/// seed 9090, in the thirty-fifth session).
+/// The gates the built-up edge's refit tries beside the screen's choice (class `chosen`), best
+/// score first, from the best-scoring gate of each class (`best`, indexed by [`gate_class`]): on
+/// each coordinate its best gate, and its best one-sided gate when that best is a band. A band is
+/// not tried where the coordinate's one-sided gate scored higher: refitted as well, it became a
+/// near-equivalent rival of friction or a wrong claim on heat-partition and size-effect datasets
+/// (families b and d, seeds 12121 and 13131, thirty-fifth session).
+fn gate_alternatives(best: [Option<(f64, Context)>; 4], chosen: usize) -> Vec<Context> {
+    let score = |c: &Option<(f64, Context)>| c.as_ref().map_or(f64::NEG_INFINITY, |(u, _)| *u);
+    let mut out: Vec<(f64, Context)> = Vec::new();
+    for coord in 0..2 {
+        let (one_sided, band) = (&best[2 * coord], &best[2 * coord + 1]);
+        let keep_band = score(band) > score(one_sided);
+        for (k, c) in [(2 * coord, one_sided), (2 * coord + 1, band)] {
+            if k != chosen && (k % 2 == 0 || keep_band) {
+                out.extend(c.clone());
+            }
+        }
+    }
+    out.sort_by(|x, y| y.0.total_cmp(&x.0));
+    out.into_iter().map(|(_, c)| c).collect()
+}
+
+/// The built-up edge is refitted also at the gates of [`gate_alternatives`], and the fit with the
+/// lowest AICc is kept (the floor and the speed coordinate count as grid-chosen parameters,
+/// `grid_chosen`). The score is linearised at d_alpha = 0 and can prefer a gate whose refit
+/// explains less: a narrow band over the one-sided gate (family c of the concealed benchmark, seed
+/// 13131), or a speed gate over the temperature gate of an edge that follows the interface
+/// temperature (families a, b and d, seed 9090, in the thirty-fifth session).
 fn other_gates(pr: &Problem<'_>, s: &mut Screened, x0: &[f64], current: &Fit, mut f: Fit) -> Fit {
     let (n, id) = (pr.n(), s.id);
     let aicc = |fit: &Fit, spec: &Spec| stats::aicc(fit.objective(), n, fit.k + grid_chosen(id, &spec.ctx));
@@ -399,4 +413,37 @@ fn nested_point(x: &[f64], id: MechanismId) -> Vec<f64> {
 /// `Some(v)` for a finite number, `None` otherwise (reports never carry NaN or inf).
 pub(crate) fn finite(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cutcal_model::CuttingTest;
+
+    /// A gate of class `class` ([`gate_class`]) with onset `onset`, and its score `u`.
+    fn gate(class: usize, onset: f64, u: f64) -> Option<(f64, Context)> {
+        let t = CuttingTest::new("t", 2.0, 0.1e-3, 1e-3, 0.0).unwrap();
+        let mut c = Context::of(&[t]);
+        c.bue_by_speed = class >= 2;
+        c.bue_floor = if class % 2 == 1 { 0.5 * onset } else { 0.0 };
+        c.bue_onset = onset;
+        assert_eq!(gate_class(&c), class);
+        Some((u, c))
+    }
+
+    #[test]
+    fn the_refit_tries_each_coordinate_best_gate_and_its_one_sided_gate_after_a_band() {
+        let onsets = |v: Vec<Context>| v.iter().map(|c| c.bue_onset).collect::<Vec<_>>();
+        // The screen chose the temperature band (class 1, score 9): its one-sided gate (score 5)
+        // is tried, then the speed's best, a band (7), and the speed's one-sided gate (3), by score.
+        let best = [gate(0, 600.0, 5.0), gate(1, 650.0, 9.0), gate(2, 120.0, 3.0), gate(3, 140.0, 7.0)];
+        assert_eq!(onsets(gate_alternatives(best, 1)), vec![140.0, 600.0, 120.0]);
+        // The screen chose the one-sided temperature gate (9 over the band's 5): the band is not
+        // tried; the speed's one-sided gate (7) scored over its band (3), so only it is.
+        let best = [gate(0, 600.0, 9.0), gate(1, 650.0, 5.0), gate(2, 120.0, 7.0), gate(3, 140.0, 3.0)];
+        assert_eq!(onsets(gate_alternatives(best, 0)), vec![120.0]);
+        // Without the speed coordinate and a one-sided choice there is nothing else to try.
+        let best = [gate(0, 600.0, 9.0), gate(1, 650.0, 5.0), None, None];
+        assert!(gate_alternatives(best, 0).is_empty());
+    }
 }
