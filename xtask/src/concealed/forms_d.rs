@@ -13,7 +13,7 @@
 //! | thermal_softening | TANH strain-temperature softening (Calamaz, Coupard & Girot 2008) | Zerilli-Armstrong exp(-c3 T*) | kappa_T and JC m scale |
 //! | heat_partition | Weiner's shear-plane partition and a Péclet-dependent tool share (after Tian & Kennedy 1994) | Loewen-Shaw R1 and 1 - R2 | Boothroyd-beta scale, constant share |
 //! | size_effect | primary zone only, k_AB (1 + h_s / h) (after Backer, Marshall & Shaw 1952) | Kienzle power law on every flow stress | Nix-Gao sqrt(1 + l/h), the share w_ref of it at the dataset's mean thickness held by the simulation (thirty-second session) |
-//! | built_up_edge | a speed window (peak speed falling with feed; after Trent & Wright 2000, Childs et al. 2000), rake increase and edge radius | interface-temperature logistic gate | interface-temperature logistic gate or band |
+//! | built_up_edge | a speed window (peak speed falling with feed; after Trent & Wright 2000, Childs et al. 2000), rake increase and edge radius | interface-temperature logistic gate | interface-temperature logistic gate or band, or the same on the speed |
 //! | force_crosstalk | dynamometer turned by an angle (rotation) plus a feed-into-cutting leakage | full 2x2 matrix | Ft += c Fc |
 
 use std::f64::consts::{FRAC_PI_2, PI};
