@@ -3,7 +3,7 @@
 //! absorb), which order them, then a joint refit of every one with its F-test (chi-bar-square mixture for
 //! parameters whose off value sits on a bound, Self & Liang 1987; `crate::ftest`) and 95 % Wald
 //! intervals. Friction is refitted in both forms of its law and the better kept (`coulomb_form`);
-//! the built-up edge at the best-scoring gate of each gate class (`other_gates`).
+//! the built-up edge also at the gates of `gate_alternatives` (`other_gates`).
 
 use nalgebra::{DMatrix, DVector};
 
@@ -25,8 +25,8 @@ struct Screened {
     p: f64,
     absorption: f64,
     sens: Vec<f64>,
-    /// The built-up edge's other gate classes' best-scoring gates (their contexts), best first:
-    /// the refit also tries them (`other_gates`).
+    /// The built-up edge's alternative gates (their contexts, best score first, from
+    /// `gate_alternatives`): the refit also tries them (`other_gates`).
     other_gates: Vec<Context>,
 }
 

@@ -67,8 +67,8 @@ pub fn bue_gates(tests: &[CuttingTest], ctx: &Context) -> Vec<(f64, f64)> {
 /// The gate coordinates the screen offers the built-up edge, as contexts: `ctx` itself, and with
 /// [`Context::bue_by_speed`] set when `ctx` is gated by the interface temperature, at least three
 /// speeds were tested and the speed orders the tests differently from the temperature (where it
-/// orders them alike, its gates are the same partitions of the tests). The choice is one more
-/// grid-chosen parameter of the gate (`ftest::grid_chosen`), and the calibrated null repeats it.
+/// orders them alike, its gates are the same partitions of the tests). A speed gate counts as one
+/// more grid-chosen parameter (`ftest::grid_chosen`), and the calibrated null repeats the choice.
 #[must_use]
 pub fn bue_coordinates(tests: &[CuttingTest], ctx: &Context) -> Vec<Context> {
     let mut out = vec![ctx.clone()];
