@@ -40,10 +40,13 @@ pub(crate) fn result_of(
         } else {
             ("v_onset", "m/min", "chosen on a grid of the tested speeds, not fitted")
         };
-        params.insert(
-            name.into(),
-            ParamValue { value: v, unit: unit.into(), ci_low: None, ci_high: None, ci_note: note.into() },
-        );
+        // A rising gate has no onset in the design (`mechanism::bue_gates`): its floor alone.
+        if v.is_finite() {
+            params.insert(
+                name.into(),
+                ParamValue { value: v, unit: unit.into(), ci_low: None, ci_high: None, ci_note: note.into() },
+            );
+        }
         let floor = c.spec.ctx.bue_floor;
         if floor > 0.0 {
             let (name, unit) =

@@ -111,3 +111,30 @@ fn a_built_up_edge_charted_on_the_speed_alone_is_gated_by_the_speed() {
     let onset = b.params.get("v_onset").map(|p| p.value);
     assert!(onset.is_some_and(|v| v > 150.0 && v < 220.0), "{}", report.to_text());
 }
+
+/// The rising side of an edge's band: a smooth rise in speed, `1 / (1 + (V / 120)^-8)`.
+fn rising(t: &CuttingTest) -> f64 {
+    1.0 / (1.0 + (t.speed_m_per_s * 60.0 / 120.0).powi(-8))
+}
+
+#[test]
+fn the_rising_side_gives_its_shares_by_hand() {
+    // (V/120)^-8: 256 at 60, 4.2998 at 100, 0.16777 at 150, 0.00784 at 220, 0.00066 at 300 m/min,
+    // so 1/257, 1/5.2998, 1/1.16777, 1/1.00784 and 1/1.00066.
+    assert_shares(&rising, 0.1e-3, [0.004, 0.189, 0.856, 0.992, 0.999]);
+}
+
+#[test]
+fn a_built_up_edge_on_the_rising_side_of_its_band_is_named_with_a_floor_alone() {
+    // A 10 deg rake increase times `rising`: the edge grows with the speed and the design stops
+    // before it vanishes (Trent & Wright 2000, Sec 5.3: the edge's height rises from the lowest
+    // speeds to a peak). Every onset of the detector's gates leaves a third of the tests above it
+    // without the edge, which these recordings contradict; the rising gate (a floor, no onset)
+    // holds them. Before the thirty-sixth session (no rising gate) these recordings were named
+    // `tool_chip_friction`, a speed-dependent friction law (checked by reverting the detector).
+    let report = with_rake_increase(&rising);
+    assert_eq!(report.selected.first().map(String::as_str), Some("built_up_edge"), "{}", report.to_text());
+    let b = report.mechanisms.iter().find(|m| m.id == "built_up_edge").unwrap();
+    assert!(!b.params.contains_key("t_onset") && !b.params.contains_key("v_onset"), "{}", report.to_text());
+    assert!(b.params.contains_key("t_floor") || b.params.contains_key("v_floor"), "{}", report.to_text());
+}

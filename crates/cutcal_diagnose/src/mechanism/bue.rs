@@ -61,7 +61,26 @@ pub fn bue_gates(tests: &[CuttingTest], ctx: &Context) -> Vec<(f64, f64)> {
             out.push((onset, floors[idx]));
         }
     }
+    out.extend(rising_floors(&v).into_iter().map(|floor| (f64::INFINITY, floor)));
     out
+}
+
+/// Floors of the rising gate: the edge above a floor with no onset in the design (`onset =
+/// infinity`), the rising side of the edge's band when the design stops below the coordinate at
+/// which it vanishes (Trent & Wright 2000, Sec 5.3: the edge's height grows with speed from the
+/// lowest speeds to a peak). The mirror of [`bue_onsets`]: geometric midpoints that leave at least
+/// a third of the gate values (and at least two) below the floor and two above it; at most 4,
+/// evenly spread over the ranks.
+fn rising_floors(v: &[f64]) -> Vec<f64> {
+    let below = 2.max(v.len().div_ceil(3));
+    if v.len() < below + 2 {
+        return Vec::new();
+    }
+    let all: Vec<f64> = (below - 1..=v.len() - 3).map(|j| (v[j] * v[j + 1]).sqrt()).collect();
+    if all.len() <= 4 {
+        return all;
+    }
+    (0..4).map(|k| all[k * (all.len() - 1) / 3]).collect()
 }
 
 /// The gate coordinates the screen offers the built-up edge, as contexts: `ctx` itself, and with
@@ -88,11 +107,12 @@ pub fn bue_coordinates(tests: &[CuttingTest], ctx: &Context) -> Vec<Context> {
     out
 }
 
-/// The built-up edge's gate at `coordinate`: [`bue_indicator`] below the onset, times the rise
-/// above the floor when there is one (`floor > 0`).
+/// The built-up edge's gate at `coordinate`: [`bue_indicator`] below the onset (1 with no onset,
+/// `onset = infinity`: the rising gate of [`bue_gates`]), times the rise above the floor when
+/// there is one (`floor > 0`).
 #[must_use]
 pub fn bue_gate(coordinate: f64, onset: f64, floor: f64) -> f64 {
-    let upper = bue_indicator(coordinate, onset);
+    let upper = if onset.is_finite() { bue_indicator(coordinate, onset) } else { 1.0 };
     if floor > 0.0 {
         upper * (1.0 - bue_indicator(coordinate, floor))
     } else {
@@ -131,16 +151,36 @@ mod tests {
         // Nine interface temperatures 400, 450, ..., 800 degC and the six onsets above. An onset
         // with b gate values below it takes the floors between values j and j + 1 for j = 1..b-3
         // (two values below the floor, two in the band): none for b = 1, 2, 3; one for b = 4
-        // (sqrt(450 * 500)); two for b = 5; three for b = 6. 6 + 1 + 2 + 3 = 12 gates.
+        // (sqrt(450 * 500)); two for b = 5; three for b = 6. 6 + 1 + 2 + 3 = 12 gates, and the 4
+        // rising gates of `rising_gates_leave_a_third_below_and_two_above`.
         let (tests, ctx) = gated(&(0..9).map(|i| 400.0 + 50.0 * i as f64).collect::<Vec<_>>());
         let g = bue_gates(&tests, &ctx);
-        assert_eq!(g.len(), 12, "{g:?}");
+        assert_eq!(g.len(), 16, "{g:?}");
+        assert_eq!(g.iter().filter(|(o, _)| o.is_infinite()).count(), 4);
         let mid = |a: f64, b: f64| (a * b).sqrt();
         assert!(g.contains(&(mid(550.0, 600.0), mid(450.0, 500.0))));
         assert!(g.contains(&(mid(650.0, 700.0), mid(550.0, 600.0))));
         assert!(!g.contains(&(mid(650.0, 700.0), mid(600.0, 650.0))), "one value in the band");
         assert!(!g.contains(&(mid(650.0, 700.0), mid(400.0, 450.0))), "one value below the floor");
         assert_eq!(g.iter().filter(|(_, f)| *f == 0.0).count(), 6);
+    }
+
+    #[test]
+    fn rising_gates_leave_a_third_below_and_two_above() {
+        // Nine values 400, 450, ..., 800: three stay below the floor and two above, so the floors
+        // are the midpoints after the 3rd to the 7th value (j = 2..6, five), spread to four over
+        // the ranks (j = 2, 3, 4, 6). Four values: two below and two above, one floor. Three
+        // values: none.
+        let v: Vec<f64> = (0..9).map(|i| 400.0 + 50.0 * i as f64).collect();
+        let mid = |a: f64, b: f64| (a * b).sqrt();
+        let want = [mid(500.0, 550.0), mid(550.0, 600.0), mid(600.0, 650.0), mid(700.0, 750.0)];
+        assert_eq!(rising_floors(&v), want);
+        assert_eq!(rising_floors(&[400.0, 500.0, 600.0, 700.0]), vec![mid(500.0, 600.0)]);
+        assert!(rising_floors(&[400.0, 500.0, 600.0]).is_empty());
+        // With no onset the gate is the rise above the floor alone: 1 - 1 / (1 + (T / T_f)^10),
+        // 1/2 at the floor, (6/5)^10 / (1 + (6/5)^10) = 0.860952 at 600 over a 500 degC floor.
+        assert!((bue_gate(500.0, f64::INFINITY, 500.0) - 0.5).abs() < 1e-12);
+        assert!((bue_gate(600.0, f64::INFINITY, 500.0) - 0.860_952).abs() < 1e-6);
     }
 
     #[test]
