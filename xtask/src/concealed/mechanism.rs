@@ -10,7 +10,7 @@
 //! | thermal_softening | extra Zerilli-Armstrong exponential thermal factor exp(-c3 (T - Tr)) | kappa_T on (T - T_w) and a scale on the JC m |
 //! | heat_partition | family a: Loewen & Shaw 1954 shear-plane partition and tool share of the frictional heat blended in; family b: Boothroyd 1963 and all frictional heat to the chip blended in; family c: Boothroyd 1963 (from Weiner 1955) and the Loewen-Shaw tool share blended in | scale on Boothroyd beta and a constant interface share |
 //! | size_effect | Kienzle 1952 power law (h / h_ref)^-m_s on the flow stress | Nix-Gao sqrt(1 + l/h), the share w_ref of it at the dataset's mean thickness held by the simulation (thirty-second session) |
-//! | built_up_edge | rake shift gated by the interface temperature (Trent & Wright 2000) | rake shift gated by the interface temperature (logistic below an onset, or a band above a floor as well), or by the speed where it orders the tests otherwise (thirty-fifth session) |
+//! | built_up_edge | rake shift gated by the interface temperature (Trent & Wright 2000) | rake shift gated by the interface temperature (logistic below an onset, or a band above a floor as well, or above a floor alone, thirty-sixth session), or by the speed where it orders the tests otherwise (thirty-fifth session) |
 //! | force_crosstalk | full 2x2 channel matrix (dynamometer cross-sensitivity) | Ft += c Fc |
 
 use rand::Rng;
