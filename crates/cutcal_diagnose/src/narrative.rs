@@ -51,7 +51,11 @@ pub(crate) fn result_of(
         if floor > 0.0 {
             let (name, unit) =
                 if c.spec.ctx.bue_gated_by_temperature() { ("t_floor", "degC") } else { ("v_floor", "m/min") };
-            let note = "lower end of the band in which the edge forms, chosen on a grid of the tests' values";
+            let note = if v.is_finite() {
+                "lower end of the band in which the edge forms, chosen on a grid of the tests' values"
+            } else {
+                "above it the edge forms, up to the end of the design (the rising side of its band), chosen on a grid of the tests' values"
+            };
             params.insert(
                 name.into(),
                 ParamValue { value: floor, unit: unit.into(), ci_low: None, ci_high: None, ci_note: note.into() },

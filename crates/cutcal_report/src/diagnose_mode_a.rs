@@ -13,7 +13,8 @@ use crate::error::{Context, Result};
 
 /// The nominal set's misfit (`classes::ClassScore::rms`, an RMS of log ratios at one common force
 /// level) in the per cent of the fitted shadow's RMS beside it (`exp(rms) - 1`, as
-/// `ShadowSummary::rms_pct`), so that the two read on one scale.
+/// `ShadowSummary::rms_pct`), so that the two read on one scale. (The nominal's RMS also counts
+/// the interface temperature where the simulation gives it; the fitted one counts Fc, Ft and t2.)
 fn nominal_misfit_text(rms_log: Option<f64>) -> String {
     rms_log.map_or("not available (none solved)".to_string(), |r| {
         format!("{:.1} % at one common force level", 100.0 * r.exp_m1())
