@@ -49,6 +49,11 @@ fn with_rake_increase(share: &dyn Fn(&CuttingTest) -> f64) -> cutcal_diagnose::R
     run(&rec, &ext)
 }
 
+/// The built-up edge's first-round result in `report`.
+fn edge_result(report: &cutcal_diagnose::Report) -> &cutcal_diagnose::report::MechanismResult {
+    report.mechanisms.iter().find(|m| m.id == "built_up_edge").expect("the built-up edge is in the report")
+}
+
 #[test]
 fn the_window_formula_gives_the_shares_in_the_docs() {
     assert_shares(&window, 0.1e-3, [0.032, 0.511, 1.0, 0.550, 0.141]);
@@ -58,7 +63,7 @@ fn the_window_formula_gives_the_shares_in_the_docs() {
 fn a_built_up_edge_in_a_band_of_speeds_is_named_with_a_floor() {
     let report = with_rake_increase(&window);
     assert_eq!(report.selected, vec!["built_up_edge".to_string()], "{}", report.to_text());
-    let b = report.mechanisms.iter().find(|m| m.id == "built_up_edge").unwrap();
+    let b = edge_result(&report);
     let (floor, onset) = (b.params["t_floor"].value, b.params["t_onset"].value);
     assert!(floor > 0.0 && floor < onset, "floor {floor}, onset {onset}: {}", report.to_text());
 }
@@ -76,7 +81,7 @@ fn a_built_up_edge_at_the_slowest_speeds_is_named_without_a_floor() {
     let step = |t: &CuttingTest| 1.0 / (1.0 + (t.speed_m_per_s * 60.0 / 120.0).powi(8));
     let report = with_rake_increase(&step);
     assert_eq!(report.selected.first().map(String::as_str), Some("built_up_edge"), "{}", report.to_text());
-    let b = report.mechanisms.iter().find(|m| m.id == "built_up_edge").unwrap();
+    let b = edge_result(&report);
     assert!(!b.params.contains_key("t_floor") && !b.params.contains_key("v_floor"), "{}", report.to_text());
     assert!(b.params.contains_key("v_onset"), "{}", report.to_text());
     assert_eq!(report.selected.len(), 1, "{}", report.to_text());
@@ -107,7 +112,7 @@ fn a_built_up_edge_charted_on_the_speed_alone_is_gated_by_the_speed() {
     // reverting the detector).
     let report = with_rake_increase(&fixed_window);
     assert_eq!(report.selected, vec!["built_up_edge".to_string()], "{}", report.to_text());
-    let b = report.mechanisms.iter().find(|m| m.id == "built_up_edge").unwrap();
+    let b = edge_result(&report);
     let onset = b.params.get("v_onset").map(|p| p.value);
     assert!(onset.is_some_and(|v| v > 150.0 && v < 220.0), "{}", report.to_text());
 }
@@ -134,7 +139,7 @@ fn a_built_up_edge_on_the_rising_side_of_its_band_is_named_with_a_floor_alone() 
     // `tool_chip_friction`, a speed-dependent friction law (checked by reverting the detector).
     let report = with_rake_increase(&rising);
     assert_eq!(report.selected.first().map(String::as_str), Some("built_up_edge"), "{}", report.to_text());
-    let b = report.mechanisms.iter().find(|m| m.id == "built_up_edge").unwrap();
+    let b = edge_result(&report);
     assert!(!b.params.contains_key("t_onset") && !b.params.contains_key("v_onset"), "{}", report.to_text());
     let floor = b.params.get("t_floor").or_else(|| b.params.get("v_floor"));
     assert!(floor.is_some_and(|f| f.ci_note.contains("rising side")), "{}", report.to_text());
