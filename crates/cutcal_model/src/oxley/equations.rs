@@ -11,7 +11,7 @@
 use std::cell::Cell;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, LN_10};
 
-use crate::error::ModelError;
+use crate::error::{ModelError, NoC0};
 use crate::jc::JcParams;
 use crate::material::Material;
 
@@ -184,15 +184,9 @@ impl Context<'_> {
     pub fn c0_for_phi(&self, phi_rad: f64, n_eq: f64, s_psi: f64, c_psi: f64) -> Result<f64, ModelError> {
         let alpha = self.conditions.rake_rad;
         let [clo, chi] = self.options.c0_range;
-        let what =
-            || format!("Oxley strain-rate constant C0 (sigma_N = sigma_N') at phi {:.3} deg", phi_rad.to_degrees());
+        let fail = |why: NoC0| ModelError::NoAdmissibleC0 { phi_deg: phi_rad.to_degrees(), low: clo, high: chi, why };
         if !(n_eq > 0.0) {
-            return Err(ModelError::NoSolution {
-                what: what(),
-                low: clo,
-                high: chi,
-                detail: "n_eq = 0: the normal-stress balance does not depend on C0 (no strain hardening)".into(),
-            });
+            return Err(fail(NoC0::NoHardening));
         }
         let t0 = 1.0 + 2.0 * (FRAC_PI_4 - phi_rad);
         let k = 1.0 + FRAC_PI_2 - 2.0 * alpha;
@@ -201,12 +195,7 @@ impl Context<'_> {
             (3.0 * s_psi * s_psi - 4.0, 6.0 * t0 - 6.0 * a * s_psi + 2.0 * k, 3.0 * a * a - 3.0 * k * t0);
         let disc = a1 * a1 - 4.0 * a2 * a0;
         if !(disc >= 0.0) {
-            return Err(ModelError::NoSolution {
-                what: what(),
-                low: clo,
-                high: chi,
-                detail: "the normal-stress balance has no real root in C0 n_eq at this phi".into(),
-            });
+            return Err(fail(NoC0::NoRealRoot));
         }
         // Stable quadratic roots (a2 < 0 always, so the quadratic never degenerates).
         let q = -0.5 * (a1 + disc.sqrt().copysign(a1));
@@ -224,19 +213,7 @@ impl Context<'_> {
             c0 >= clo && c0 <= chi && lambda_ok && h_factor > 0.0
         };
         let best = roots.iter().copied().filter(|u| u.is_finite() && admissible(*u)).map(|u| u / n_eq).reduce(f64::min);
-        best.ok_or_else(|| {
-            let shown: Vec<String> =
-                roots.iter().filter(|u| u.is_finite()).map(|u| format!("{:.3}", u / n_eq)).collect();
-            ModelError::NoSolution {
-                what: what(),
-                low: clo,
-                high: chi,
-                detail: format!(
-                    "the balance needs C0 = {} (closed form), outside the range or inadmissible",
-                    shown.join(" or ")
-                ),
-            }
-        })
+        best.ok_or_else(|| fail(NoC0::Inadmissible(roots.map(|u| if u.is_finite() { u / n_eq } else { f64::NAN }))))
     }
 
     /// The primary zone, the force system and the chip temperature at phi, with C0 from

@@ -50,12 +50,14 @@ impl Solver<'_> {
             match self.envelope(phi) {
                 Ok(s) => r.push(Some(s.residual_shear)),
                 Err(e) => {
-                    // Keep the count and one reason, preferring a C0 outside its range.
-                    let msg = e.to_string();
-                    let c0_range = msg.contains("strain-rate constant C0");
-                    let (count, kept) = self.inadmissible.take().unwrap_or((0, String::new()));
-                    let keep_new = kept.is_empty() || (c0_range && !kept.contains("strain-rate constant C0"));
-                    self.inadmissible = Some((count + 1, if keep_new { msg } else { kept }));
+                    // Keep the count and one reason, preferring a C0 outside its range (typed, and
+                    // worded only if the model has no solution: most probes fail by design).
+                    let c0 = |e: &ModelError| matches!(e, ModelError::NoAdmissibleC0 { .. });
+                    self.inadmissible = Some(match self.inadmissible.take() {
+                        Some((count, kept)) if !c0(&e) || c0(&kept) => (count + 1, kept),
+                        Some((count, _)) => (count + 1, e),
+                        None => (1, e),
+                    });
                     r.push(None);
                 }
             }

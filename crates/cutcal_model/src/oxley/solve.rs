@@ -52,7 +52,7 @@ pub(crate) struct Solver<'a> {
     /// delta), once [`Solver::rescue`] has looked for it.
     pub(super) best_residual: Option<(f64, f64, f64)>,
     /// How many phi of that search had no admissible state, and one reason.
-    pub(super) inadmissible: Option<(usize, String)>,
+    pub(super) inadmissible: Option<(usize, ModelError)>,
     /// While true (the continuous delta scan), [`Solver::secant`] accepts a certified bracket with
     /// a residual below [`SCAN_RESIDUAL`].
     pub(super) scanning: bool,
