@@ -32,6 +32,7 @@ mod problem;
 pub use problem::condition_groups;
 pub mod report;
 mod screen;
+mod separate;
 pub mod simulator;
 mod verdict;
 

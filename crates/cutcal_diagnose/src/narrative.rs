@@ -11,6 +11,7 @@ use crate::mechanism::{info, MechanismId};
 use crate::problem::{rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
 use crate::screen::finite;
+use crate::separate::{separating_test, Recorded};
 use crate::simulator::Simulator;
 
 pub(crate) fn result_of(
@@ -128,7 +129,19 @@ pub(crate) fn next_test(
                     }
                 }
             }
-            for m in ambiguous {
+            // The measurement in which the best rival and each other one differ in kind
+            // (`crate::separate`); a mechanism no such pair covers keeps its own test.
+            let recorded = Recorded::of(pr.tests);
+            let mut covered = Vec::new();
+            if let Some((&first, rest)) = ambiguous.split_first() {
+                for &m in rest {
+                    if let Some(t) = separating_test(first, m, recorded) {
+                        parts.push(format!("to separate {} from {}, {t}", first.as_str(), m.as_str()));
+                        covered.extend([first, m]);
+                    }
+                }
+            }
+            for m in ambiguous.iter().filter(|m| !covered.contains(m)) {
                 parts.push(format!("{}: {}", m.as_str(), info(*m).separate_by));
             }
             parts.join("; ")

@@ -1,0 +1,148 @@
+//! The measurement that tells two near-equivalent mechanisms apart (the `next_test` of an
+//! ambiguous verdict), from the physics in which their signatures differ in kind, and what to do
+//! instead when the recordings already hold that measurement.
+//!
+//! Each mechanism's own `separate_by` (`mechanism::library`) says what confirms it against the
+//! baseline. Two rivals that explain the same forces and chip need the quantity in which they
+//! move apart, which is a property of the pair:
+//!
+//! - friction and heat partition: a lower interface friction lowers the frictional heat and with
+//!   it the interface temperature rise, while a larger share of that heat into the chip raises it
+//!   at the same lower feed force (Oxley 1989, the interface temperature rise `dT_M` of the
+//!   frictional heat; Boothroyd 1963, Loewen & Shaw 1954 on its partition);
+//! - softening and heat partition: a partition moves the temperatures themselves, a different
+//!   softening moves the flow stress at nearly the model's temperatures;
+//! - friction and built-up edge: the edge is gone once the interface is hot (Trent & Wright 2000,
+//!   Sec 5.3), a lower friction is not;
+//! - edge ploughing and size effect: the ploughing force follows the edge radius (Waldorf, DeVor
+//!   & Kapoor 1998), a size effect the uncut chip thickness alone (Nix & Gao 1998);
+//! - edge ploughing and flank wear: the land grows along the run order, the edge does not;
+//! - cross-talk against an edge, a wear land or friction: a dead weight in the cutting direction
+//!   reads on the feed channel only through cross-talk (ISO 21612:2021).
+
+use cutcal_model::CuttingTest;
+
+use crate::mechanism::MechanismId;
+
+/// Which optional measurements the recordings hold at every test.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct Recorded {
+    /// The tool-chip interface temperature (`t_int_c`).
+    pub(crate) interface_temperature: bool,
+    /// The flank wear land VB (`flank_wear_mm`).
+    pub(crate) flank_wear: bool,
+}
+
+impl Recorded {
+    /// What every one of `tests` records (an empty set records nothing).
+    pub(crate) fn of(tests: &[CuttingTest]) -> Self {
+        let all = |f: &dyn Fn(&CuttingTest) -> bool| !tests.is_empty() && tests.iter().all(f);
+        Self {
+            interface_temperature: all(&|t| t.measured.interface_temperature_c.is_some()),
+            flank_wear: all(&|t| t.flank_wear_m.is_some()),
+        }
+    }
+}
+
+/// The next measurement that separates mechanisms `a` and `b` (in either order), given what the
+/// recordings hold; `None` for a pair without one (the mechanisms' own tests then stand).
+pub(crate) fn separating_test(a: MechanismId, b: MechanismId, rec: Recorded) -> Option<String> {
+    use MechanismId as M;
+    let is = |x: M, y: M| (a == x && b == y) || (a == y && b == x);
+    let dead_weights = "check the force channels with dead weights in each direction (ISO 21612): only cross-talk \
+                        reads a feed force under a load in the cutting direction";
+    let text = if is(M::ToolChipFriction, M::HeatPartition) {
+        if rec.interface_temperature {
+            "the interface temperature recorded here does not yet separate them: add the slowest and the \
+             fastest speed the tool allows, where the tool's share of the frictional heat differs most \
+             (Loewen & Shaw 1954) while a friction factor acts alike"
+        } else {
+            "measure the tool-chip interface temperature: a lower friction lowers the frictional heat and \
+             the interface temperature with it, while a larger share of that heat into the chip raises it"
+        }
+    } else if is(M::ThermalSoftening, M::HeatPartition) {
+        if rec.interface_temperature {
+            "the interface temperature recorded here does not yet separate them: widen the speed range \
+             (x10), over which a different softening grows with the temperature while a different \
+             partition is largest at the lowest V h"
+        } else {
+            "measure the tool-chip interface temperature: a different heat partition moves the temperature \
+             itself, a different softening moves the forces at nearly the model's temperatures"
+        }
+    } else if is(M::ToolChipFriction, M::BuiltUpEdge) {
+        "repeat the lowest-speed test and inspect the rake face for adhered material, and add a speed \
+         above the fastest: a built-up edge is gone once the interface is hot (Trent & Wright 2000), a \
+         lower friction is not"
+    } else if is(M::EdgePloughing, M::SizeEffect) {
+        "repeat the thinnest cut with a tool of another edge radius: the ploughing force changes with the \
+         radius, a size effect does not"
+    } else if is(M::EdgePloughing, M::FlankWear) {
+        if rec.flank_wear {
+            "measure the edge radius before and after the series: the recorded wear land does not yet \
+             separate them, and an edge that stays as it was leaves the trend to the wear"
+        } else {
+            "measure VB after each test and randomise the test order: the land grows along the run \
+             order, the edge does not"
+        }
+    } else if is(M::ForceCrosstalk, M::EdgePloughing)
+        || is(M::ForceCrosstalk, M::FlankWear)
+        || is(M::ForceCrosstalk, M::ToolChipFriction)
+    {
+        dead_weights
+    } else {
+        return None;
+    };
+    Some(text.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use MechanismId as M;
+
+    #[test]
+    fn a_pair_is_separated_the_same_way_in_either_order() {
+        let rec = Recorded::default();
+        for &a in &M::ALL {
+            for &b in &M::ALL {
+                assert_eq!(separating_test(a, b, rec), separating_test(b, a, rec), "{a:?} {b:?}");
+            }
+        }
+        // A mechanism is not its own rival.
+        assert!(M::ALL.iter().all(|&m| separating_test(m, m, rec).is_none()));
+    }
+
+    #[test]
+    fn friction_and_heat_partition_are_told_apart_by_the_interface_temperature_unless_it_is_recorded() {
+        let none = Recorded::default();
+        let t = separating_test(M::ToolChipFriction, M::HeatPartition, none).unwrap();
+        assert!(t.starts_with("measure the tool-chip interface temperature"), "{t}");
+        let with_t = Recorded { interface_temperature: true, ..none };
+        let t = separating_test(M::HeatPartition, M::ToolChipFriction, with_t).unwrap();
+        assert!(t.contains("recorded here does not yet separate them"), "{t}");
+        assert!(!t.starts_with("measure the tool-chip interface temperature"), "{t}");
+    }
+
+    #[test]
+    fn a_recorded_wear_land_asks_for_the_edge_radius_instead() {
+        let t = separating_test(M::FlankWear, M::EdgePloughing, Recorded::default()).unwrap();
+        assert!(t.starts_with("measure VB after each test"), "{t}");
+        let t = separating_test(M::FlankWear, M::EdgePloughing, Recorded { flank_wear: true, ..Recorded::default() })
+            .unwrap();
+        assert!(t.starts_with("measure the edge radius"), "{t}");
+    }
+
+    #[test]
+    fn only_the_interface_temperature_and_the_wear_land_recorded_at_every_test_count() {
+        let mut a = CuttingTest::new("1", 2.0, 1e-4, 2e-3, 0.0).unwrap();
+        let mut b = CuttingTest::new("2", 3.0, 1e-4, 2e-3, 0.0).unwrap();
+        assert_eq!(Recorded::of(&[a.clone(), b.clone()]), Recorded::default());
+        a.measured.interface_temperature_c = Some(600.0);
+        a.flank_wear_m = Some(1e-4);
+        assert_eq!(Recorded::of(&[a.clone(), b.clone()]), Recorded::default());
+        b.measured.interface_temperature_c = Some(650.0);
+        let rec = Recorded::of(&[a, b]);
+        assert!(rec.interface_temperature && !rec.flank_wear);
+        assert_eq!(Recorded::of(&[]), Recorded::default());
+    }
+}
