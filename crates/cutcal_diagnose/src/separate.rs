@@ -54,8 +54,8 @@ pub(crate) fn separating_test(a: MechanismId, b: MechanismId, rec: Recorded) -> 
     let text = if is(M::ToolChipFriction, M::HeatPartition) {
         if rec.interface_temperature {
             "the interface temperature recorded here does not yet separate them: add the slowest and the \
-             fastest speed the tool allows, where the tool's share of the frictional heat differs most \
-             (Loewen & Shaw 1954) while a friction factor acts alike"
+             fastest speed the tool allows, between which the tool's share of the frictional heat \
+             changes most (Loewen & Shaw 1954)"
         } else {
             "measure the tool-chip interface temperature: a lower friction lowers the frictional heat and \
              the interface temperature with it, while a larger share of that heat into the chip raises it"
