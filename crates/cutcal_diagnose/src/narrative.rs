@@ -11,7 +11,7 @@ use crate::mechanism::{info, MechanismId};
 use crate::problem::{rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
 use crate::screen::finite;
-use crate::separate::{separating_test, Recorded};
+use crate::separate::{own_test, separating_test, Recorded};
 use crate::simulator::Simulator;
 
 pub(crate) fn result_of(
@@ -117,7 +117,7 @@ pub(crate) fn next_test(
                     "confirm {} with a test at {s} where the corrected and uncorrected models differ most",
                     m.as_str()
                 ),
-                None => format!("confirm {}: {}", m.as_str(), info(m).separate_by),
+                None => format!("confirm {}: {}", m.as_str(), own_test(m, Recorded::of(pr.tests))),
             }
         }
         Verdict::Ambiguous => {
@@ -142,7 +142,7 @@ pub(crate) fn next_test(
                 }
             }
             for m in ambiguous.iter().filter(|m| !covered.contains(m)) {
-                parts.push(format!("{}: {}", m.as_str(), info(*m).separate_by));
+                parts.push(format!("{}: {}", m.as_str(), own_test(*m, recorded)));
             }
             parts.join("; ")
         }
@@ -158,6 +158,7 @@ fn unexplained_next_test(pr: &Problem<'_>, cands: &[Candidate], base: &Fit, base
     let mut fitting: Vec<&Candidate> = cands.iter().filter(|c| c.significant && c.ci_ok && !c.accepted).collect();
     fitting.sort_by(|a, b| a.daicc.total_cmp(&b.daicc));
     let conditions = pr.groups.len();
+    let recorded = Recorded::of(pr.tests);
     if let Some((c, a)) = fitting.iter().find_map(|c| c.stopped_by.map(|a| (c, a))) {
         let drift = if a == Artefact::Drift { " and repeat the first test at the end of the series" } else { "" };
         let check = format!("check the force channels with dead weights in each direction (ISO 21612){drift}");
@@ -172,7 +173,7 @@ fn unexplained_next_test(pr: &Problem<'_>, cands: &[Candidate], base: &Fit, base
             format!(
                 "{check}: {artefact} explains the mismatch as well as {id} does; if the channels hold their \
                  calibration, {id} is the candidate ({})",
-                info(c.id).separate_by
+                own_test(c.id, recorded)
             )
         };
     }
@@ -184,12 +185,26 @@ fn unexplained_next_test(pr: &Problem<'_>, cands: &[Candidate], base: &Fit, base
              with {conditions} conditions: add conditions{at}; then {}",
             c.id.as_str(),
             c.p,
-            info(c.id).separate_by
+            own_test(c.id, recorded)
         );
     }
+    // Ask only for what the recordings do not hold already.
+    let missing: Vec<&str> = [
+        (!recorded.edge_radius).then_some("the edge radius"),
+        (!recorded.flank_wear).then_some("the flank wear"),
+        (!recorded.interface_temperature).then_some("the interface temperature"),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    let measure = match missing.as_slice() {
+        [] => String::new(),
+        [one] => format!("measure {one}, and "),
+        [init @ .., last] => format!("measure {} and {last}, and ", init.join(", ")),
+    };
     format!(
-        "the mismatch fits no library mechanism: measure the edge radius, the flank wear and the interface \
-         temperature, and add feeds and speeds outside the present range ({conditions} conditions now)"
+        "the mismatch fits no library mechanism: {measure}add feeds and speeds outside the present range \
+         ({conditions} conditions now)"
     )
 }
 

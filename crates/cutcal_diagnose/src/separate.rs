@@ -1,6 +1,7 @@
 //! The measurement that tells two near-equivalent mechanisms apart (the `next_test` of an
 //! ambiguous verdict), from the physics in which their signatures differ in kind, and what to do
-//! instead when the recordings already hold that measurement.
+//! instead when the recordings already hold that measurement; likewise a single mechanism's own
+//! confirmation, less what the recordings hold (`own_test`).
 //!
 //! Each mechanism's own `separate_by` (`mechanism::library`) says what confirms it against the
 //! baseline. Two rivals that explain the same forces and chip need the quantity in which they
@@ -31,6 +32,10 @@ pub(crate) struct Recorded {
     pub(crate) interface_temperature: bool,
     /// The flank wear land VB (`flank_wear_mm`).
     pub(crate) flank_wear: bool,
+    /// The chip thickness (`chip_mm`).
+    pub(crate) chip: bool,
+    /// The edge radius (`edge_radius_um`).
+    pub(crate) edge_radius: bool,
 }
 
 impl Recorded {
@@ -40,8 +45,36 @@ impl Recorded {
         Self {
             interface_temperature: all(&|t| t.measured.interface_temperature_c.is_some()),
             flank_wear: all(&|t| t.flank_wear_m.is_some()),
+            chip: all(&|t| t.measured.chip_thickness_m.is_some()),
+            edge_radius: all(&|t| t.edge_radius_m.is_some()),
         }
     }
+}
+
+/// What would confirm mechanism `m` against the model: its library test (`separate_by`), less the
+/// measurements the recordings already hold, which the diagnosis has used.
+pub(crate) fn own_test(m: MechanismId, rec: Recorded) -> String {
+    use MechanismId as M;
+    let text = match m {
+        M::EdgePloughing if rec.edge_radius => {
+            "add a smaller and a larger feed: ploughing is additive, its relative share growing as r/h with the \
+             recorded edge radius r"
+        }
+        M::FlankWear if rec.flank_wear => {
+            "randomise the test order, so that the recorded wear land no longer follows the test conditions"
+        }
+        M::ToolChipFriction if rec.chip => {
+            "measure the tool-chip contact length, which a lower friction shortens as it thins the chip; a \
+             channel-gain error moves neither"
+        }
+        M::ThermalSoftening if rec.interface_temperature => "widen the speed range (x10)",
+        M::HeatPartition if rec.interface_temperature => {
+            "add the slowest and the fastest speed the tool allows: the recorded interface temperature then \
+             spans the thermal numbers V h over which a partition changes most"
+        }
+        _ => return crate::mechanism::info(m).separate_by.to_string(),
+    };
+    text.to_string()
 }
 
 /// The next measurement that separates mechanisms `a` and `b` (in either order), given what the
@@ -133,7 +166,25 @@ mod tests {
     }
 
     #[test]
-    fn only_the_interface_temperature_and_the_wear_land_recorded_at_every_test_count() {
+    fn a_mechanism_s_own_test_drops_what_the_recordings_hold() {
+        let none = Recorded::default();
+        for &m in &M::ALL {
+            assert_eq!(own_test(m, none), crate::mechanism::info(m).separate_by, "{m:?}");
+        }
+        let all = Recorded { interface_temperature: true, flank_wear: true, chip: true, edge_radius: true };
+        assert!(!own_test(M::ToolChipFriction, all).contains("chip thickness"));
+        assert!(!own_test(M::ThermalSoftening, all).contains("interface temperature"));
+        assert!(!own_test(M::HeatPartition, all).starts_with("measure"));
+        assert!(!own_test(M::FlankWear, all).contains("measure VB"));
+        assert!(!own_test(M::EdgePloughing, all).contains("measure the edge radius"));
+        // Recorded chip only: friction no longer asks for it, the others are as in the library.
+        let chip = Recorded { chip: true, ..none };
+        assert!(own_test(M::ToolChipFriction, chip).starts_with("measure the tool-chip contact length"));
+        assert_eq!(own_test(M::HeatPartition, chip), crate::mechanism::info(M::HeatPartition).separate_by);
+    }
+
+    #[test]
+    fn only_the_measurements_recorded_at_every_test_count() {
         let mut a = CuttingTest::new("1", 2.0, 1e-4, 2e-3, 0.0).unwrap();
         let mut b = CuttingTest::new("2", 3.0, 1e-4, 2e-3, 0.0).unwrap();
         assert_eq!(Recorded::of(&[a.clone(), b.clone()]), Recorded::default());
@@ -141,8 +192,9 @@ mod tests {
         a.flank_wear_m = Some(1e-4);
         assert_eq!(Recorded::of(&[a.clone(), b.clone()]), Recorded::default());
         b.measured.interface_temperature_c = Some(650.0);
+        a.measured.chip_thickness_m = Some(2e-4);
         let rec = Recorded::of(&[a, b]);
-        assert!(rec.interface_temperature && !rec.flank_wear);
+        assert!(rec.interface_temperature && !rec.flank_wear && !rec.chip && !rec.edge_radius);
         assert_eq!(Recorded::of(&[]), Recorded::default());
     }
 }
