@@ -26,6 +26,7 @@ use crate::narrative::{explain, next_test, result_of};
 use crate::problem::{condition_groups, loco_of, rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
 use crate::screen::{cosine, screen_and_refit};
+use crate::separate::{own_test, separating_test, Recorded};
 use crate::simulator::Simulator;
 use crate::stats;
 use crate::verdict::decide;
@@ -245,6 +246,8 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         }
         for c in &mut cands {
             if let Some(a) = confounded_with(c.id).filter(|_| c.reason.starts_with("passes")) {
+                let rec = Recorded::of(pr.tests);
+                let sep = separating_test(a, c.id, rec).unwrap_or_else(|| own_test(c.id, rec));
                 notes.push(format!(
                     "{} also improves the fit on top of {} (p = {:.2e}), but the library lists the two as \
                      confounded, so it is not claimed as a second mechanism: what remains may be {}'s true form. \
@@ -253,14 +256,14 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                     a.as_str(),
                     c.p,
                     a.as_str(),
-                    info(c.id).separate_by
+                    sep
                 ));
                 c.reason = format!(
                     "confounded with {}, claimed in an earlier round: not claimed as a second mechanism (the \
                      remaining misfit may be {}'s true form; to separate them: {})",
                     a.as_str(),
                     a.as_str(),
-                    info(c.id).separate_by
+                    sep
                 );
                 c.held_back_for = Some(a);
             }
