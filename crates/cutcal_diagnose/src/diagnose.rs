@@ -385,10 +385,11 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             after_pct: 100.0 * ((after_fit.resid[i] * noise[o.output]).exp() - 1.0),
         })
         .collect();
+    let rec = Recorded::of(pr.tests);
     let next_test =
         next_test(&pr, verdict, &accepted, &ambiguous, &first_round, &base, &base_spec, &current, &current_spec);
     let mut explanation =
-        explain(verdict, &mismatch, &accepted, &ambiguous, &first_round, &fit_summary, conditions, &global);
+        explain(verdict, &mismatch, &accepted, &ambiguous, &first_round, &fit_summary, conditions, &global, rec);
     for note in &notes {
         explanation.push(' ');
         explanation.push_str(note);

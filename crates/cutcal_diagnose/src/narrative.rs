@@ -11,7 +11,7 @@ use crate::mechanism::{info, MechanismId};
 use crate::problem::{rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
 use crate::screen::finite;
-use crate::separate::{own_test, separating_test, Recorded};
+use crate::separate::{own_test, runner_up_sentence, runner_up_test, separating_test, Recorded};
 use crate::simulator::Simulator;
 
 pub(crate) fn result_of(
@@ -112,12 +112,18 @@ pub(crate) fn next_test(
         Verdict::Unexplained => unexplained_next_test(pr, cands, base, base_spec),
         Verdict::MissingPhysics => {
             let m = accepted[0];
-            match t_optimal(pr, (&base_spec.clone(), &base.x), (current_spec, &current.x)) {
+            let rec = Recorded::of(pr.tests);
+            let confirm = match t_optimal(pr, (&base_spec.clone(), &base.x), (current_spec, &current.x)) {
                 Some(s) => format!(
                     "confirm {} with a test at {s} where the corrected and uncorrected models differ most",
                     m.as_str()
                 ),
-                None => format!("confirm {}: {}", m.as_str(), own_test(m, Recorded::of(pr.tests))),
+                None => format!("confirm {}: {}", m.as_str(), own_test(m, rec)),
+            };
+            // A confounded runner-up close behind the claim (`separate::runner_up_test`).
+            match runner_up_test(cands, m, rec) {
+                Some(sep) => format!("{confirm}; {sep}"),
+                None => confirm,
             }
         }
         Verdict::Ambiguous => {
@@ -267,6 +273,7 @@ pub(crate) fn explain(
     fit: &FitSummary,
     conditions: usize,
     global: &GlobalMisfit,
+    recorded: Recorded,
 ) -> String {
     let mut s = String::new();
     let big: Vec<String> = mismatch
@@ -305,6 +312,10 @@ pub(crate) fn explain(
                     "The missing physics is most likely {} ({}). Expected signature: {}. It was fitted together with the material parameters, passed a significance test calibrated for a 5 % false-alarm rate over all mechanisms tried, has a bounded confidence interval, and improves the prediction of conditions left out of the fit. ",
                     inf.title, inf.source, inf.signature
                 ));
+            }
+            if let Some(r) = accepted.first().and_then(|&m| runner_up_sentence(cands, m, recorded)) {
+                s.push_str(&r);
+                s.push(' ');
             }
             if let (Some(b), Some(a)) = (&fit.before.loco, &fit.after.loco) {
                 // The held-out check weighs each output by its noise (`crate::heldout`); the per-cent
@@ -362,12 +373,12 @@ mod tests {
     #[test]
     fn a_real_misfit_without_an_average_bias_is_not_called_agreement() {
         let global = GlobalMisfit { chi2: 614.6, dof: 36, p_value: 2.0e-106 };
-        let text = explain(Verdict::Unexplained, &[], &[], &[], &[], &summary(), 14, &global);
+        let text = explain(Verdict::Unexplained, &[], &[], &[], &[], &summary(), 14, &global, Recorded::default());
         assert!(!text.contains("agree within"), "{text}");
         assert!(text.contains("misfit as a whole"), "{text}");
         assert!(text.contains("The mismatch is real"), "{text}");
         let quiet = GlobalMisfit { chi2: 30.0, dof: 36, p_value: 0.75 };
-        let text = explain(Verdict::None, &[], &[], &[], &[], &summary(), 14, &quiet);
+        let text = explain(Verdict::None, &[], &[], &[], &[], &summary(), 14, &quiet, Recorded::default());
         assert!(text.contains("agree within"), "{text}");
     }
 
@@ -381,11 +392,11 @@ mod tests {
         fit.before.loco = Some(up(3.6));
         fit.after.loco = Some(up(3.8));
         let id = [MechanismId::SizeEffect];
-        let text = explain(Verdict::MissingPhysics, &[], &id, &[], &[], &fit, 7, &global);
+        let text = explain(Verdict::MissingPhysics, &[], &id, &[], &[], &fit, 7, &global, Recorded::default());
         assert!(!text.contains("falls from 3.6 % to 3.8 %"), "{text}");
         assert!(text.contains("3.6 % before, 3.8 % after"), "{text}");
         fit.after.loco = Some(up(2.9));
-        let text = explain(Verdict::MissingPhysics, &[], &id, &[], &[], &fit, 7, &global);
+        let text = explain(Verdict::MissingPhysics, &[], &id, &[], &[], &fit, 7, &global, Recorded::default());
         assert!(text.contains("Held-out error falls from 3.6 % to 2.9 % RMS"), "{text}");
     }
 }

@@ -1,7 +1,9 @@
 //! The measurement that tells two near-equivalent mechanisms apart (the `next_test` of an
 //! ambiguous verdict), from the physics in which their signatures differ in kind, and what to do
 //! instead when the recordings already hold that measurement; likewise a single mechanism's own
-//! confirmation, less what the recordings hold (`own_test`).
+//! confirmation, less what the recordings hold (`own_test`); and a claim's runner-up, the next
+//! candidate in AICc, with the evidence ratio of the two (`runner_up`; Burnham & Anderson 2002,
+//! Secs 2.6 and 2.9).
 //!
 //! Each mechanism's own `separate_by` (`mechanism::library`) says what confirms it against the
 //! baseline. Two rivals that explain the same forces and chip need the quantity in which they
@@ -23,7 +25,17 @@
 
 use cutcal_model::CuttingTest;
 
-use crate::mechanism::MechanismId;
+use crate::mechanism::{info, MechanismId};
+use crate::problem::Candidate;
+
+/// AICc distance beyond which a candidate has essentially no support beside the best (Burnham &
+/// Anderson 2002, Sec 2.6: dAICc > 10): the report names the claim's runner-up only within it.
+const RUNNER_UP_DAICC: f64 = 10.0;
+
+/// AICc distance within which the next test also separates the claim from its runner-up: an
+/// evidence ratio below e^2 = 7.4 (Burnham & Anderson 2002, Sec 2.6: beyond 4 a model has
+/// considerably less support).
+const NEXT_TEST_DAICC: f64 = 4.0;
 
 /// Which optional measurements the recordings hold at every test.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -128,6 +140,59 @@ pub(crate) fn separating_test(a: MechanismId, b: MechanismId, rec: Recorded) -> 
     Some(text.to_string())
 }
 
+/// The claim `chosen`'s runner-up among the round's candidates `cands`: the one of least dAICc after
+/// it that also passed its significance test with a usable interval, no conflict and no
+/// instrument stop, within [`RUNNER_UP_DAICC`]; with its AICc distance behind the claim.
+pub(crate) fn runner_up(cands: &[Candidate], chosen: MechanismId) -> Option<(&Candidate, f64)> {
+    let claim = cands.iter().find(|c| c.id == chosen && c.accepted)?;
+    cands
+        .iter()
+        .filter(|c| c.id != chosen && c.significant && c.ci_ok && c.conflict.is_none() && c.stopped_by.is_none())
+        .map(|c| (c, c.daicc - claim.daicc))
+        .filter(|(_, d)| d.is_finite() && (0.0..RUNNER_UP_DAICC).contains(d))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+/// Whether the library lists `a` and `b` as confounded (either in the other's list).
+fn confounded(a: MechanismId, b: MechanismId) -> bool {
+    info(a).confounders.contains(&b) || info(b).confounders.contains(&a)
+}
+
+/// The explanation's sentence on the claim's runner-up: how strongly the data prefer the claim
+/// (the evidence ratio of the two Akaike weights, exp(dAICc / 2); Burnham & Anderson 2002, Sec
+/// 2.9), and for a confounded pair what would tell them apart.
+pub(crate) fn runner_up_sentence(cands: &[Candidate], chosen: MechanismId, rec: Recorded) -> Option<String> {
+    let (r, delta) = runner_up(cands, chosen)?;
+    let claim = cands.iter().find(|c| c.id == chosen)?;
+    let mut s = format!(
+        "Next to it, {} also passes the significance test (dAICc {:.1} against {:.1}): the data favour {} by an \
+         evidence ratio of {:.1} to 1 (Akaike weights, Burnham & Anderson 2002).",
+        r.id.as_str(),
+        r.daicc,
+        claim.daicc,
+        chosen.as_str(),
+        (0.5 * delta).exp()
+    );
+    if confounded(chosen, r.id) {
+        let sep = separating_test(chosen, r.id, rec).unwrap_or_else(|| own_test(r.id, rec));
+        s.push_str(&format!(" The library lists the two as confounded; to tell them apart, {sep}."));
+    }
+    Some(s)
+}
+
+/// The next test's part that separates the claim from a confounded runner-up within
+/// [`NEXT_TEST_DAICC`], or `None`.
+pub(crate) fn runner_up_test(cands: &[Candidate], chosen: MechanismId, rec: Recorded) -> Option<String> {
+    let (r, delta) = runner_up(cands, chosen).filter(|(r, d)| *d < NEXT_TEST_DAICC && confounded(chosen, r.id))?;
+    let sep = separating_test(chosen, r.id, rec).unwrap_or_else(|| own_test(r.id, rec));
+    Some(format!(
+        "to separate {} from {} (evidence ratio {:.1} to 1), {sep}",
+        chosen.as_str(),
+        r.id.as_str(),
+        (0.5 * delta).exp()
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -196,5 +261,79 @@ mod tests {
         let rec = Recorded::of(&[a, b]);
         assert!(rec.interface_temperature && !rec.flank_wear && !rec.chip && !rec.edge_radius);
         assert_eq!(Recorded::of(&[]), Recorded::default());
+    }
+
+    /// A first-round candidate of mechanism `id` at `daicc`, significant with a usable interval.
+    fn cand(id: M, daicc: f64, accepted: bool) -> Candidate {
+        let fit = crate::fit::Fit {
+            x: vec![],
+            resid: vec![],
+            rss: 0.0,
+            penalty: 0.0,
+            k: 0,
+            preds: vec![],
+            status: crate::fit::FitStatus::Converged,
+        };
+        let spec = crate::fit::Spec { mechanisms: vec![id], ctx: crate::context::Context::of(&[]) };
+        Candidate {
+            id,
+            spec,
+            fit,
+            p: 1e-6,
+            daicc,
+            explained: 0.5,
+            absorption: 0.0,
+            screen_p: 1e-6,
+            ci: vec![],
+            ci_note: String::new(),
+            ci_ok: true,
+            conflict: None,
+            change: vec![],
+            sens: vec![],
+            loco_after: None,
+            significant: true,
+            accepted,
+            reason: String::new(),
+            stopped_by: None,
+            held_back_for: None,
+        }
+    }
+
+    #[test]
+    fn the_runner_up_is_the_next_valid_candidate_within_ten_aicc_units() {
+        let rec = Recorded::default();
+        let mut cands = vec![
+            cand(M::ThermalSoftening, -33.6, true),
+            cand(M::HeatPartition, -30.6, false),
+            cand(M::EdgePloughing, -31.0, false),
+        ];
+        // The edge is nearer (2.6 units) but not significant: heat partition, 3.0 behind, is next.
+        cands[2].significant = false;
+        let (r, d) = runner_up(&cands, M::ThermalSoftening).unwrap();
+        assert_eq!(r.id, M::HeatPartition);
+        assert!((d - 3.0).abs() < 1e-12);
+        // Evidence ratio exp(3.0 / 2) = 4.48 (Burnham & Anderson 2002, Sec 2.9), and the pair's
+        // separating measurement, since the library lists them as confounded.
+        let s = runner_up_sentence(&cands, M::ThermalSoftening, rec).unwrap();
+        assert!(s.contains("evidence ratio of 4.5 to 1"), "{s}");
+        assert!(s.contains("to tell them apart, measure the tool-chip interface temperature"), "{s}");
+        let t = runner_up_test(&cands, M::ThermalSoftening, rec).unwrap();
+        assert!(t.starts_with("to separate thermal_softening from heat_partition (evidence ratio 4.5 to 1)"), "{t}");
+        // 5 units behind: named in the explanation, not in the next test (beyond 4).
+        cands[1].daicc = -28.6;
+        assert!(runner_up_sentence(&cands, M::ThermalSoftening, rec).is_some());
+        assert!(runner_up_test(&cands, M::ThermalSoftening, rec).is_none());
+        // 10 or more behind, or a crossing softening refit: no runner-up.
+        cands[1].daicc = -23.6;
+        assert!(runner_up(&cands, M::ThermalSoftening).is_none());
+        cands[1].daicc = -30.6;
+        cands[1].conflict = Some("crossing".into());
+        assert!(runner_up(&cands, M::ThermalSoftening).is_none());
+        // A runner-up the library does not pair with the claim gets no separating measurement.
+        cands[1].conflict = None;
+        cands[1].id = M::SizeEffect;
+        let s = runner_up_sentence(&cands, M::ThermalSoftening, rec).unwrap();
+        assert!(!s.contains("confounded"), "{s}");
+        assert!(runner_up_test(&cands, M::ThermalSoftening, rec).is_none());
     }
 }
