@@ -164,15 +164,21 @@ fn confounded(a: MechanismId, b: MechanismId) -> bool {
 pub(crate) fn runner_up_sentence(cands: &[Candidate], chosen: MechanismId, rec: Recorded) -> Option<String> {
     let (r, delta) = runner_up(cands, chosen)?;
     let claim = cands.iter().find(|c| c.id == chosen)?;
+    // Within 4 units the support for the runner-up is not much less than the claim's (Burnham &
+    // Anderson 2002, Sec 2.6), and the sentence says so.
+    let weak = if delta < NEXT_TEST_DAICC { " only" } else { "" };
     let mut s = format!(
-        "Next to it, {} also passes the significance test (dAICc {:.1} against {:.1}): the data favour {} by an \
-         evidence ratio of {:.1} to 1 (Akaike weights, Burnham & Anderson 2002).",
+        "Next to it, {} also passes the significance test (dAICc {:.1} against {:.1}): the data favour {}{weak} by \
+         an evidence ratio of {:.1} to 1 (Akaike weights, Burnham & Anderson 2002).",
         r.id.as_str(),
         r.daicc,
         claim.daicc,
         chosen.as_str(),
         (0.5 * delta).exp()
     );
+    if delta < NEXT_TEST_DAICC {
+        s.push_str(" That is weak evidence: treat the claim as provisional until the two are told apart.");
+    }
     if confounded(chosen, r.id) {
         let sep = separating_test(chosen, r.id, rec).unwrap_or_else(|| own_test(r.id, rec));
         s.push_str(&format!(" The library lists the two as confounded; to tell them apart, {sep}."));
@@ -315,13 +321,16 @@ mod tests {
         // Evidence ratio exp(3.0 / 2) = 4.48 (Burnham & Anderson 2002, Sec 2.9), and the pair's
         // separating measurement, since the library lists them as confounded.
         let s = runner_up_sentence(&cands, M::ThermalSoftening, rec).unwrap();
-        assert!(s.contains("evidence ratio of 4.5 to 1"), "{s}");
+        assert!(s.contains("favour thermal_softening only by an evidence ratio of 4.5 to 1"), "{s}");
+        assert!(s.contains("treat the claim as provisional"), "{s}");
         assert!(s.contains("to tell them apart, measure the tool-chip interface temperature"), "{s}");
         let t = runner_up_test(&cands, M::ThermalSoftening, rec).unwrap();
         assert!(t.starts_with("to separate thermal_softening from heat_partition (evidence ratio 4.5 to 1)"), "{t}");
         // 5 units behind: named in the explanation, not in the next test (beyond 4).
         cands[1].daicc = -28.6;
-        assert!(runner_up_sentence(&cands, M::ThermalSoftening, rec).is_some());
+        let s = runner_up_sentence(&cands, M::ThermalSoftening, rec).unwrap();
+        assert!(s.contains("favour thermal_softening by an evidence ratio of 12.2 to 1"), "{s}");
+        assert!(!s.contains("provisional"), "{s}");
         assert!(runner_up_test(&cands, M::ThermalSoftening, rec).is_none());
         // 10 or more behind, or a crossing softening refit: no runner-up.
         cands[1].daicc = -23.6;
