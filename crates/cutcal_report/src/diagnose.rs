@@ -262,6 +262,35 @@ mod tests {
     }
 
     #[test]
+    fn a_close_confounded_runner_up_is_named_with_its_evidence_ratio() {
+        // A benchmark pair made by another closure (family b: Merchant's, a hidden heat partition):
+        // softening and the heat partition, which the library lists as confounded, both pass, about
+        // 3 AICc units apart. The claim's runner-up is named with the evidence ratio of the two
+        // Akaike weights, exp(dAICc / 2) (Burnham & Anderson 2002), recomputed here from the JSON's
+        // dAICc values, and the next test asks for the measurement that separates them.
+        let r = diagnose_files(&args(
+            "fixtures/diagnose/close_runner_up_recordings.csv",
+            Some("fixtures/diagnose/close_runner_up_simulation.csv"),
+            None,
+            None,
+        ))
+        .unwrap();
+        assert_eq!(r.verdict, cutcal_diagnose::Verdict::MissingPhysics, "{}", r.to_text());
+        let pair = ["thermal_softening", "heat_partition"];
+        let claim = r.selected[0].as_str();
+        assert!(pair.contains(&claim), "{claim}");
+        let other = pair.iter().find(|m| **m != claim).unwrap();
+        let daicc = |id: &str| r.mechanisms.iter().find(|m| m.id == id).and_then(|m| m.delta_aicc).unwrap();
+        let delta = daicc(other) - daicc(claim);
+        assert!((0.0..4.0).contains(&delta), "{delta}");
+        let ratio = format!("evidence ratio of {:.1} to 1", (0.5 * delta).exp());
+        assert!(r.explanation.contains(&format!("Next to it, {other} also passes")), "{}", r.explanation);
+        assert!(r.explanation.contains(&ratio) && r.explanation.contains("provisional"), "{}", r.explanation);
+        assert!(r.explanation.contains("measure the tool-chip interface temperature"), "{}", r.explanation);
+        assert!(r.next_test.contains(&format!("to separate {claim} from {other}")), "{}", r.next_test);
+    }
+
+    #[test]
     fn a_candidate_that_fails_only_the_held_out_check_asks_for_more_conditions() {
         // Five conditions (a benchmark pair with a hidden heat partition): the misfit is real and
         // mechanisms fit it significantly, but with one condition held out none predicts it better,
