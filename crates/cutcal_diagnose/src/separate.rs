@@ -168,8 +168,9 @@ pub(crate) fn runner_up_sentence(cands: &[Candidate], chosen: MechanismId, rec: 
     // Anderson 2002, Sec 2.6), and the sentence says so.
     let weak = if delta < NEXT_TEST_DAICC { " only" } else { "" };
     let mut s = format!(
-        "Next to it, {} also passes the significance test (dAICc {:.1} against {:.1}): the data favour {}{weak} by \
+        "Next to {}, {} also passes the significance test (dAICc {:.1} against {:.1}): the data favour {}{weak} by \
          an evidence ratio of {:.1} to 1 (Akaike weights, Burnham & Anderson 2002).",
+        chosen.as_str(),
         r.id.as_str(),
         r.daicc,
         claim.daicc,
@@ -321,6 +322,7 @@ mod tests {
         // Evidence ratio exp(3.0 / 2) = 4.48 (Burnham & Anderson 2002, Sec 2.9), and the pair's
         // separating measurement, since the library lists them as confounded.
         let s = runner_up_sentence(&cands, M::ThermalSoftening, rec).unwrap();
+        assert!(s.starts_with("Next to thermal_softening, heat_partition also passes"), "{s}");
         assert!(s.contains("favour thermal_softening only by an evidence ratio of 4.5 to 1"), "{s}");
         assert!(s.contains("treat the claim as provisional"), "{s}");
         assert!(s.contains("to tell them apart, measure the tool-chip interface temperature"), "{s}");

@@ -284,7 +284,7 @@ mod tests {
         let delta = daicc(other) - daicc(claim);
         assert!((0.0..4.0).contains(&delta), "{delta}");
         let ratio = format!("evidence ratio of {:.1} to 1", (0.5 * delta).exp());
-        assert!(r.explanation.contains(&format!("Next to it, {other} also passes")), "{}", r.explanation);
+        assert!(r.explanation.contains(&format!("Next to {claim}, {other} also passes")), "{}", r.explanation);
         assert!(r.explanation.contains(&ratio) && r.explanation.contains("provisional"), "{}", r.explanation);
         assert!(r.explanation.contains("measure the tool-chip interface temperature"), "{}", r.explanation);
         assert!(r.next_test.contains(&format!("to separate {claim} from {other}")), "{}", r.next_test);
