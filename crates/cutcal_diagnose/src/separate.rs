@@ -347,4 +347,45 @@ mod tests {
         assert!(!s.contains("confounded"), "{s}");
         assert!(runner_up_test(&cands, M::ThermalSoftening, rec).is_none());
     }
+
+    proptest::proptest! {
+        /// Over any round of candidates: the runner-up is never the claim, is a valid candidate
+        /// (significant, usable interval, no conflict, no instrument stop) 0-10 AICc units behind
+        /// it, no valid candidate lies nearer behind, and the next test names it only within 4
+        /// units and for a confounded pair.
+        #[test]
+        fn the_runner_up_is_the_nearest_valid_candidate_behind_the_claim(
+            rows in proptest::collection::vec((0usize..8, -60.0f64..10.0, proptest::bool::ANY, proptest::bool::ANY), 1..8),
+            claim_daicc in -60.0f64..0.0,
+        ) {
+            let rec = Recorded::default();
+            let mut cands = vec![cand(M::ALL[0], claim_daicc, true)];
+            for (k, d, sig, ok) in &rows {
+                let mut c = cand(M::ALL[*k], *d, false);
+                c.significant = *sig;
+                c.ci_ok = *ok;
+                cands.push(c);
+            }
+            let chosen = M::ALL[0];
+            let valid = |c: &Candidate| c.id != chosen && c.significant && c.ci_ok;
+            let behind = |c: &Candidate| c.daicc - claim_daicc;
+            match runner_up(&cands, chosen) {
+                Some((r, d)) => {
+                    proptest::prop_assert!(valid(r));
+                    proptest::prop_assert!((0.0..10.0).contains(&d) && (d - behind(r)).abs() < 1e-12);
+                    for c in cands.iter().filter(|c| valid(c)) {
+                        proptest::prop_assert!(!(0.0..d).contains(&behind(c)), "{:?} is nearer", c.id);
+                    }
+                    let named = runner_up_test(&cands, chosen, rec).is_some();
+                    proptest::prop_assert_eq!(named, d < 4.0 && confounded(chosen, r.id));
+                }
+                None => {
+                    for c in cands.iter().filter(|c| valid(c)) {
+                        proptest::prop_assert!(!(0.0..10.0).contains(&behind(c)));
+                    }
+                    proptest::prop_assert!(runner_up_sentence(&cands, chosen, rec).is_none());
+                }
+            }
+        }
+    }
 }
