@@ -2,7 +2,8 @@
 //! (design note Sec 3.2-3.9).
 //!
 //! Acceptance of a mechanism needs all of: (1) an F-test of the joint refit below the level
-//! calibrated on the data's own null (`crate::null`: parametric bootstrap through the whole screen
+//! calibrated on the data's own null, and an AICc below the current model's (`ftest::supported`;
+//! `crate::null`: parametric bootstrap through the whole screen
 //! and refit; the family level divided by the number of mechanisms, Bonferroni, only when no
 //! replicates are asked for; the chi-bar-square mixture for parameters whose off value sits on a
 //! bound, Self & Liang 1987); (2) a lower leave-one-condition-out error than the baseline, for
@@ -198,7 +199,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         // choice that keeps spurious additions rare).
         let alpha_round = alpha_k / f64::from(1u32 << (2 * round as u32));
         for c in &mut cands {
-            c.significant = c.p.is_finite() && c.p < alpha_round;
+            c.significant = crate::ftest::supported(c.p, alpha_round, c.daicc);
         }
         // A later round does not claim a confounder of a mechanism already claimed (either one
         // listed in the other's `confounders`): their signatures share directions, so what is
@@ -229,7 +230,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             c.reason = if !c.p.is_finite() {
                 "too few numbers to test it".into()
             } else if !c.significant {
-                format!("not significant (p = {:.2e} >= {:.4})", c.p, alpha_round)
+                crate::ftest::unsupported_reason(c.p, alpha_round, c.daicc)
             } else if let Some(why) = &c.conflict {
                 why.clone()
             } else if !c.ci_ok {

@@ -54,6 +54,30 @@ pub(crate) fn grid_chosen(id: MechanismId, ctx: &Context) -> usize {
     }
 }
 
+/// Whether a refit is significant: its F-test below the round's level `alpha` and its AICc below
+/// the current model's (`daicc < 0`). The F-test asks whether the data demand the mechanism; the
+/// AICc, which ranks rival explanations and also counts the nuisance's prior penalty and the
+/// grid-chosen gates, asks whether the model with it is better supported than the model without
+/// it (Burnham & Anderson 2002, Sec 2.6). A claim that the ranking criterion itself places below
+/// the current model is not made. The calibrated null (`crate::null`) sets `alpha` on the F-test
+/// alone, so this condition only removes claims and the family-wise level still bounds the
+/// false-positive rate.
+pub(crate) fn supported(p: f64, alpha: f64, daicc: f64) -> bool {
+    p.is_finite() && p < alpha && daicc < 0.0
+}
+
+/// The reason a refit is not significant in the sense of [`supported`].
+pub(crate) fn unsupported_reason(p: f64, alpha: f64, daicc: f64) -> String {
+    if p < alpha {
+        format!(
+            "its F-test passes (p = {p:.2e} < {alpha:.4}), but its AICc is no better than the model's without it \
+             (dAICc {daicc:+.1}): the parameters it adds are not supported"
+        )
+    } else {
+        format!("not significant (p = {p:.2e} >= {alpha:.4})")
+    }
+}
+
 /// Binomial coefficient for the small counts of the mixture weights.
 fn choose(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
@@ -109,7 +133,7 @@ pub(crate) fn cosine(a: &[f64], b: &[f64]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{boundary_params, f_test, shape_params};
+    use super::{boundary_params, f_test, shape_params, supported, unsupported_reason};
     use crate::mechanism::MechanismId;
 
     #[test]
@@ -152,5 +176,19 @@ mod tests {
         let two = f_test(90.0, 60.0, 1, 31, 1, 0);
         let one = f_test(90.0, 60.0, 1, 31, 1, 1);
         assert!((one - 0.5 * two).abs() < 1e-15 && two < 1e-3 && two > 1e-4, "{two}");
+    }
+
+    #[test]
+    fn a_claim_needs_its_f_test_and_an_aicc_below_the_model_without_it() {
+        assert!(supported(1e-4, 0.01, -0.5));
+        // Significant by its F-test, but the AICc ranks the model without it higher (a size effect
+        // with five conditions on a gain decoy: dAICc +15.8).
+        assert!(!supported(1e-4, 0.01, 15.8));
+        assert!(!supported(1e-4, 0.01, 0.0));
+        assert!(!supported(0.02, 0.01, -20.0));
+        assert!(!supported(f64::NAN, 0.01, -20.0));
+        let r = unsupported_reason(1e-4, 0.01, 15.8);
+        assert!(r.starts_with("its F-test passes (p = 1.00e-4 < 0.0100)") && r.contains("dAICc +15.8"), "{r}");
+        assert_eq!(unsupported_reason(0.02, 0.01, -20.0), "not significant (p = 2.00e-2 >= 0.0100)");
     }
 }

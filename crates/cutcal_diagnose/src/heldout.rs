@@ -14,8 +14,9 @@ use crate::stats;
 /// too few conditions to hold one out.
 ///
 /// Nested pipeline: inside each fold, the significance decision is re-run on the fold's fits (the
-/// round's level `alpha_round`, the F-test of the refit) and the held-out condition is predicted
-/// with the fold's choice, the smallest AICc of the whole objective among the significant ones.
+/// round's level `alpha_round`, the F-test of the refit, and an AICc below the fold's current
+/// model's, `ftest::supported`) and the held-out condition is predicted with the fold's choice,
+/// the smallest AICc of the whole objective among the significant ones.
 /// The fold chooses among the candidates that pass their own held-out check on the whole data and
 /// are not `refused` (as the decision does): a candidate that extrapolates badly cannot be chosen
 /// on the data, so it must not sink the pipeline's check either (a stated, small optimism, like the
@@ -47,6 +48,7 @@ pub(crate) fn heldout_round(
     for fold in &folds {
         let nb = fold[0].rss;
         let n_tr = n - fold[0].resid.len();
+        let a0 = stats::aicc(fold[0].objective(), n_tr, fold[0].k);
         let mut best: Option<(f64, usize)> = None;
         for (s, &i) in sig.iter().enumerate() {
             if !own_ok[s] {
@@ -56,7 +58,7 @@ pub(crate) fn heldout_round(
             let d = f.k - fold[0].k;
             let p = f_test(nb, f.rss, tested_df(cands[i].id, d), n_tr, f.k, boundary_params(cands[i].id));
             let a = stats::aicc(f.objective(), n_tr, f.k + grid_chosen(cands[i].id, &cands[i].spec.ctx));
-            if p < alpha_round && best.is_none_or(|(b, _)| a < b) {
+            if crate::ftest::supported(p, alpha_round, a - a0) && best.is_none_or(|(b, _)| a < b) {
                 best = Some((a, s + 1));
             }
         }
