@@ -113,6 +113,8 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     let noise_model = crate::noise::from_data(tests, &groups, cfg.noise);
     let cfg = &Config { noise: noise_model.sd, ..cfg.clone() };
     let pr = Problem { sim, tests, obs, groups, cfg };
+    // The optional measurements every test holds, for the separating advice of the report.
+    let rec = Recorded::of(tests);
     let n = pr.n();
     let noise = cfg.noise;
     let ctx0 = Context::of(tests).with_baseline_interface(sim, tests);
@@ -247,7 +249,6 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         }
         for c in &mut cands {
             if let Some(a) = confounded_with(c.id).filter(|_| c.reason.starts_with("passes")) {
-                let rec = Recorded::of(pr.tests);
                 let sep = separating_test(a, c.id, rec).unwrap_or_else(|| own_test(c.id, rec));
                 notes.push(format!(
                     "{} also improves the fit on top of {} (p = {:.2e}), but the library lists the two as \
@@ -386,7 +387,6 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             after_pct: 100.0 * ((after_fit.resid[i] * noise[o.output]).exp() - 1.0),
         })
         .collect();
-    let rec = Recorded::of(pr.tests);
     let next_test =
         next_test(&pr, verdict, &accepted, &ambiguous, &first_round, &base, &base_spec, &current, &current_spec);
     let mut explanation =

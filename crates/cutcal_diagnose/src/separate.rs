@@ -163,7 +163,6 @@ fn confounded(a: MechanismId, b: MechanismId) -> bool {
 /// 2.9), and for a confounded pair what would tell them apart.
 pub(crate) fn runner_up_sentence(cands: &[Candidate], chosen: MechanismId, rec: Recorded) -> Option<String> {
     let (r, delta) = runner_up(cands, chosen)?;
-    let claim = cands.iter().find(|c| c.id == chosen)?;
     // Within 4 units the support for the runner-up is not much less than the claim's (Burnham &
     // Anderson 2002, Sec 2.6), and the sentence says so.
     let weak = if delta < NEXT_TEST_DAICC { " only" } else { "" };
@@ -173,7 +172,7 @@ pub(crate) fn runner_up_sentence(cands: &[Candidate], chosen: MechanismId, rec: 
         chosen.as_str(),
         r.id.as_str(),
         r.daicc,
-        claim.daicc,
+        r.daicc - delta,
         chosen.as_str(),
         (0.5 * delta).exp()
     );
