@@ -324,7 +324,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             accepted.push(cands[b].id);
         }
         for c in &cands {
-            all_results.push(result_of(c, sim, base_loco.as_ref(), &pr.obs, &noise, &current));
+            all_results.push(result_of(c, sim, base_loco.as_ref(), &pr.obs, &noise, alpha_round));
         }
         match chosen {
             Some(b) => {
@@ -358,7 +358,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
 
     let outputs: Vec<usize> = pr.obs.iter().map(|o| o.output).collect();
     let after_fit = &current;
-    let fit_summary = FitSummary {
+    let summary = FitSummary {
         before: FitStats {
             in_sample: rms_pct(&base.resid, &outputs, &noise),
             loco: base_loco.as_ref().map(|l| rms_pct(&l.resid, &outputs, &noise)),
@@ -390,7 +390,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     let next_test =
         next_test(&pr, verdict, &accepted, &ambiguous, &first_round, &base, &base_spec, &current, &current_spec);
     let mut explanation =
-        explain(verdict, &mismatch, &accepted, &ambiguous, &first_round, &fit_summary, conditions, &global, rec);
+        explain(verdict, &mismatch, &accepted, &ambiguous, &first_round, &summary, conditions, &global, rec, alpha_k);
     for note in &notes {
         explanation.push(' ');
         explanation.push_str(note);
@@ -417,7 +417,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         mechanisms: all_results,
         selected: accepted.iter().map(|m| m.as_str().to_string()).collect(),
         ambiguous_with: ambiguous.iter().map(|m| m.as_str().to_string()).collect(),
-        fit: fit_summary,
+        fit: summary,
         next_test,
         explanation,
         mode: cfg.mode.clone(),

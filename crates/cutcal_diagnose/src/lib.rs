@@ -24,6 +24,7 @@ pub mod spline;
 pub use cutcal_ident::stats;
 
 pub use error::DiagnoseError;
+pub mod detect;
 pub mod diagnose;
 mod locate;
 pub mod mechanism;

@@ -10,7 +10,6 @@ use crate::instrument::Artefact;
 use crate::mechanism::{info, MechanismId};
 use crate::problem::{rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
-use crate::screen::finite;
 use crate::separate::{own_test, runner_up_sentence, runner_up_test, separating_test, Recorded};
 use crate::simulator::Simulator;
 
@@ -20,7 +19,7 @@ pub(crate) fn result_of(
     base_loco: Option<&Loco>,
     obs: &[Obs],
     noise: &[f64; crate::fit::NOUT],
-    _current: &Fit,
+    alpha: f64,
 ) -> MechanismResult {
     let inf = info(c.id);
     let mut params = BTreeMap::new();
@@ -89,7 +88,13 @@ pub(crate) fn result_of(
         absorption: c.absorption,
         screen_p_value: finite(c.screen_p),
         reason: c.reason.clone(),
+        detection_limits: crate::detect::limits(c, alpha),
     }
+}
+
+/// `Some(v)` for a finite number, `None` otherwise (reports never carry NaN or inf).
+fn finite(v: f64) -> Option<f64> {
+    v.is_finite().then_some(v)
 }
 
 #[allow(clippy::too_many_arguments)] // the report's assembled pieces, one call site
@@ -274,6 +279,7 @@ pub(crate) fn explain(
     conditions: usize,
     global: &GlobalMisfit,
     recorded: Recorded,
+    alpha: f64,
 ) -> String {
     let mut s = String::new();
     let big: Vec<String> = mismatch
@@ -352,6 +358,10 @@ pub(crate) fn explain(
         }
         Verdict::None => {
             s.push_str("No mechanism is needed; a more complex model would only fit noise.");
+            if let Some(u) = crate::detect::unseen_sentence(cands, alpha) {
+                s.push(' ');
+                s.push_str(&u);
+            }
         }
     }
     s.push_str(" In-sample improvement alone is never taken as evidence.");
@@ -373,12 +383,13 @@ mod tests {
     #[test]
     fn a_real_misfit_without_an_average_bias_is_not_called_agreement() {
         let global = GlobalMisfit { chi2: 614.6, dof: 36, p_value: 2.0e-106 };
-        let text = explain(Verdict::Unexplained, &[], &[], &[], &[], &summary(), 14, &global, Recorded::default());
+        let text =
+            explain(Verdict::Unexplained, &[], &[], &[], &[], &summary(), 14, &global, Recorded::default(), 0.01);
         assert!(!text.contains("agree within"), "{text}");
         assert!(text.contains("misfit as a whole"), "{text}");
         assert!(text.contains("The mismatch is real"), "{text}");
         let quiet = GlobalMisfit { chi2: 30.0, dof: 36, p_value: 0.75 };
-        let text = explain(Verdict::None, &[], &[], &[], &[], &summary(), 14, &quiet, Recorded::default());
+        let text = explain(Verdict::None, &[], &[], &[], &[], &summary(), 14, &quiet, Recorded::default(), 0.01);
         assert!(text.contains("agree within"), "{text}");
     }
 
@@ -392,11 +403,11 @@ mod tests {
         fit.before.loco = Some(up(3.6));
         fit.after.loco = Some(up(3.8));
         let id = [MechanismId::SizeEffect];
-        let text = explain(Verdict::MissingPhysics, &[], &id, &[], &[], &fit, 7, &global, Recorded::default());
+        let text = explain(Verdict::MissingPhysics, &[], &id, &[], &[], &fit, 7, &global, Recorded::default(), 0.01);
         assert!(!text.contains("falls from 3.6 % to 3.8 %"), "{text}");
         assert!(text.contains("3.6 % before, 3.8 % after"), "{text}");
         fit.after.loco = Some(up(2.9));
-        let text = explain(Verdict::MissingPhysics, &[], &id, &[], &[], &fit, 7, &global, Recorded::default());
+        let text = explain(Verdict::MissingPhysics, &[], &id, &[], &[], &fit, 7, &global, Recorded::default(), 0.01);
         assert!(text.contains("Held-out error falls from 3.6 % to 2.9 % RMS"), "{text}");
     }
 }

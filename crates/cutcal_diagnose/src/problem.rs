@@ -31,6 +31,9 @@ pub(crate) struct Candidate {
     pub(crate) change: Vec<f64>,
     /// Screening sensitivity of the first parameter (noise units per typical magnitude).
     pub(crate) sens: Vec<f64>,
+    /// Detection limit per strength parameter, typical moves per unit root non-centrality
+    /// (`crate::detect`).
+    pub(crate) unit_limits: Vec<f64>,
     pub(crate) loco_after: Option<Loco>,
     pub(crate) significant: bool,
     pub(crate) accepted: bool,

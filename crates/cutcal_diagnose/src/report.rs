@@ -90,6 +90,30 @@ pub struct MechanismResult {
     pub screen_p_value: Option<f64>,
     /// Why it was or was not accepted.
     pub reason: String,
+    /// The smallest move of each strength parameter this design would detect (`crate::detect`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub detection_limits: Vec<DetectionLimit>,
+}
+
+/// The smallest move of one strength parameter from its off value that the significance test would
+/// detect with [`crate::detect::POWER`] power at the round's level, alone, with the baseline free
+/// (Baarda 1968's minimal detectable bias, linearised at the screen's probe). A necessary condition
+/// for a claim, not a sufficient one: the held-out, ambiguity and instrument checks come after.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DetectionLimit {
+    /// Parameter name.
+    pub param: String,
+    /// Unit.
+    pub unit: String,
+    /// Values at or below this are detected; `None` with the reason in `note`.
+    pub below: Option<f64>,
+    /// Values at or above this are detected; `None` with the reason in `note`.
+    pub above: Option<f64>,
+    /// The limit in the parameter's typical magnitudes (above 1: a typical-size effect goes unseen).
+    pub typical_units: Option<f64>,
+    /// Why a side is not available (empty when both are).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub note: String,
 }
 
 /// RMS of the relative error, % per output and over all.
@@ -399,6 +423,7 @@ mod tests {
             absorption: 0.1,
             screen_p_value: Some(0.02),
             reason: String::new(),
+            detection_limits: Vec::new(),
         }
     }
 

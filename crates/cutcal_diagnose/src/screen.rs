@@ -25,6 +25,8 @@ struct Screened {
     p: f64,
     absorption: f64,
     sens: Vec<f64>,
+    /// Detection limit per strength column (`crate::detect::unit_limits`).
+    unit_limits: Vec<f64>,
     /// The built-up edge's alternative gates (their contexts, best score first, from
     /// `gate_alternatives`): the refit also tries them (`other_gates`).
     other_gates: Vec<Context>,
@@ -151,7 +153,8 @@ pub(crate) fn screen_and_refit(
             }
             if best.as_ref().is_none_or(|b| u > b.u) {
                 let sens = s.column(0).iter().copied().collect();
-                best = Some(Screened { id: m, spec, u, p, absorption, sens, other_gates: Vec::new() });
+                let unit_limits = crate::detect::unit_limits(&sp, s2, m);
+                best = Some(Screened { id: m, spec, u, p, absorption, sens, unit_limits, other_gates: Vec::new() });
             }
         }
         match (best, screen_error) {
@@ -304,6 +307,7 @@ pub(crate) fn screen_and_refit(
             conflict,
             change,
             sens: s.sens,
+            unit_limits: s.unit_limits,
             loco_after: None,
             significant: false,
             accepted: false,
@@ -408,11 +412,6 @@ fn nested_point(x: &[f64], id: MechanismId) -> Vec<f64> {
     let mut out = x.to_vec();
     out.extend(info(id).params.iter().take(fit::fitted_len(id)).map(|p| p.off));
     out
-}
-
-/// `Some(v)` for a finite number, `None` otherwise (reports never carry NaN or inf).
-pub(crate) fn finite(v: f64) -> Option<f64> {
-    v.is_finite().then_some(v)
 }
 
 #[cfg(test)]

@@ -296,6 +296,7 @@ mod tests {
             conflict: None,
             change: vec![],
             sens: vec![],
+            unit_limits: vec![],
             loco_after: None,
             significant: true,
             accepted,
