@@ -25,6 +25,7 @@ use crate::ftest::shape_params;
 use crate::mechanism::{info, MechanismId};
 use crate::problem::Candidate;
 use crate::report::DetectionLimit;
+use crate::simulator::ParamSpec;
 use crate::stats::normal_sf;
 
 /// The power at which the limit is stated.
@@ -60,19 +61,60 @@ pub fn noncentrality(alpha: f64, power: f64, two_sided: bool) -> f64 {
     (normal_isf(a) + normal_isf(1.0 - power)).powi(2)
 }
 
-/// The limit per strength column of `sp` (the projected sensitivities, noise units per typical
-/// move), in typical moves per unit of `sqrt(lambda)`: `sqrt(s2) / |sp_c|`, infinite where the
+/// The prior precision `1 / sd^2` of each baseline parameter in `cols` (0 where it has none, and
+/// for the parameters of mechanisms claimed in earlier rounds, which follow the baseline's).
+pub(crate) fn precision(params: &[ParamSpec], cols: &[usize]) -> Vec<f64> {
+    cols.iter().map(|&i| params.get(i).and_then(|p| p.prior_sd).map_or(0.0, |sd| 1.0 / (sd * sd))).collect()
+}
+
+/// One strength column's limit: typical moves per unit of `sqrt(lambda)`, and the share of the
+/// column's signature the baseline absorbs with its priors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ColumnLimit {
+    pub(crate) unit: f64,
+    pub(crate) absorbed: f64,
+}
+
+/// The limit per strength column of `s` (sensitivities, noise units per typical move), with the
+/// baseline's columns `j` (noise units per unit of each parameter) free under their Gaussian priors
+/// of precision `precision` (0: none). The information left in a column after profiling them out is
+/// `|s|^2 - s^T J (J^T J + Lambda)^+ J^T s` (the Schur complement of the joint information, as in
+/// the refit's Wald covariance); the limit is `sqrt(max(s2, 1) / left)`, infinite where the
 /// baseline absorbs the column whole.
-pub(crate) fn unit_limits(sp: &DMatrix<f64>, s2: f64, id: MechanismId) -> Vec<f64> {
-    let strengths = sp.ncols().saturating_sub(shape_params(id));
+pub(crate) fn unit_limits(
+    j: &DMatrix<f64>,
+    precision: &[f64],
+    s: &DMatrix<f64>,
+    s2: f64,
+    id: MechanismId,
+) -> Vec<ColumnLimit> {
+    // A baseline Jacobian that failed (no columns for the parameters free to move) leaves no limit:
+    // one without the baseline's absorption would understate what could hide.
+    if precision.len() != j.ncols() {
+        return Vec::new();
+    }
+    let strengths = s.ncols().saturating_sub(shape_params(id));
+    let mut info = j.transpose() * j;
+    for (i, p) in precision.iter().enumerate().take(info.nrows()) {
+        info[(i, i)] += p;
+    }
+    let inverse = if j.ncols() == 0 { None } else { info.pseudo_inverse(1e-12).ok() };
     (0..strengths)
         .map(|c| {
-            let norm = sp.column(c).norm();
-            if norm > 0.0 && norm.is_finite() {
-                s2.max(1.0).sqrt() / norm
+            let sc = s.column(c);
+            let total = sc.norm_squared();
+            let taken = inverse.as_ref().map_or(0.0, |inv| {
+                let g = j.transpose() * sc;
+                (g.transpose() * inv * &g)[(0, 0)]
+            });
+            let left = (total - taken).max(0.0);
+            let absorbed = if total > 0.0 { (taken / total).clamp(0.0, 1.0) } else { 1.0 };
+            let unit = if left > 1e-12 * total.max(1e-300) && left.is_finite() {
+                (s2.max(1.0) / left).sqrt()
             } else {
                 f64::INFINITY
-            }
+            };
+            ColumnLimit { unit, absorbed }
         })
         .collect()
 }
@@ -83,7 +125,7 @@ pub(crate) fn limits(c: &Candidate, alpha: f64) -> Vec<DetectionLimit> {
     c.unit_limits
         .iter()
         .zip(&inf.params)
-        .map(|(&unit, pi)| {
+        .map(|(&ColumnLimit { unit, .. }, pi)| {
             let (down, up) = (pi.off > pi.lower, pi.off < pi.upper);
             let delta = unit * noncentrality(alpha, POWER, down && up).sqrt();
             let step = delta * (pi.typical - pi.off).abs();
@@ -130,11 +172,9 @@ pub(crate) fn unseen_sentence(cands: &[Candidate], alpha: f64) -> Option<String>
             (Some(b), None) => format!("{} down to {b:.3}{unit}", l.param),
             (None, None) => format!("{} anywhere in its modelled range", l.param),
         };
-        let why = if c.absorption > 0.9 {
-            format!(
-                ", {:.0} % of whose signature the baseline's stated uncertainty also produces",
-                100.0 * c.absorption
-            )
+        let absorbed = c.unit_limits.first().map_or(0.0, |l| l.absorbed);
+        let why = if absorbed > 0.9 {
+            format!(", {:.1} % of whose signature the baseline's stated uncertainty also produces", 100.0 * absorbed)
         } else {
             String::new()
         };
@@ -175,12 +215,37 @@ mod tests {
         assert!((noncentrality(0.05, 0.8, false) - 6.1826).abs() < 1e-3);
     }
 
+    proptest::proptest! {
+        /// The quantile inverts the tail, and the non-centrality grows as the level tightens and as
+        /// the power rises.
+        #[test]
+        fn the_quantile_inverts_the_tail_and_the_limit_moves_the_right_way(
+            lp in -12.0f64..-0.01, a in 1e-4f64..0.2, pw in 0.5f64..0.99,
+        ) {
+            let p = 10f64.powf(lp);
+            let z = normal_isf(p);
+            proptest::prop_assert!((normal_sf(z) / p - 1.0).abs() < 1e-6);
+            proptest::prop_assert!(noncentrality(0.5 * a, pw, true) > noncentrality(a, pw, true));
+            proptest::prop_assert!(noncentrality(a, 0.5 * (pw + 1.0), true) > noncentrality(a, pw, true));
+            proptest::prop_assert!(noncentrality(a, pw, true) > noncentrality(a, pw, false));
+        }
+    }
+
     #[test]
-    fn a_column_the_baseline_absorbs_whole_has_no_limit() {
-        let sp = DMatrix::from_column_slice(3, 2, &[0.0, 0.0, 0.0, 3.0, 4.0, 0.0]);
-        let u = unit_limits(&sp, 0.25, MechanismId::HeatPartition);
-        assert!(u[0].is_infinite());
-        // |(3, 4, 0)| = 5; s2 below the stated noise counts as 1.
-        assert!((u[1] - 0.2).abs() < 1e-12);
+    fn the_information_left_is_the_schur_complement_worked_by_hand() {
+        // Baseline column j = (1, 0, 0), mechanism columns s1 = (2, 0, 0) (all in j's direction)
+        // and s2 = (3, 4, 0).
+        let j = DMatrix::from_column_slice(3, 1, &[1.0, 0.0, 0.0]);
+        let s = DMatrix::from_column_slice(3, 2, &[2.0, 0.0, 0.0, 3.0, 4.0, 0.0]);
+        // No prior: the baseline takes s1 whole and the 3 of s2; 16 is left, the limit 1/4 (s2 below
+        // the stated noise counts as 1).
+        let free = unit_limits(&j, &[0.0], &s, 0.25, MechanismId::HeatPartition);
+        assert!(free[0].unit.is_infinite() && (free[0].absorbed - 1.0).abs() < 1e-12);
+        assert!((free[1].unit - 0.25).abs() < 1e-12 && (free[1].absorbed - 9.0 / 25.0).abs() < 1e-12);
+        // A prior of precision 1: the baseline takes g^2 / (1 + 1) of each, g = j . s: 4 / 2 = 2 of
+        // s1's 4 (limit 1 / sqrt(2)), 9 / 2 of s2's 25 (limit 1 / sqrt(20.5)).
+        let tied = unit_limits(&j, &[1.0], &s, 1.0, MechanismId::HeatPartition);
+        assert!((tied[0].unit - 0.5f64.sqrt()).abs() < 1e-12 && (tied[0].absorbed - 0.5).abs() < 1e-12);
+        assert!((tied[1].unit - 1.0 / 20.5f64.sqrt()).abs() < 1e-12);
     }
 }

@@ -33,7 +33,7 @@ pub(crate) struct Candidate {
     pub(crate) sens: Vec<f64>,
     /// Detection limit per strength parameter, typical moves per unit root non-centrality
     /// (`crate::detect`).
-    pub(crate) unit_limits: Vec<f64>,
+    pub(crate) unit_limits: Vec<crate::detect::ColumnLimit>,
     pub(crate) loco_after: Option<Loco>,
     pub(crate) significant: bool,
     pub(crate) accepted: bool,
