@@ -3,20 +3,21 @@
 //! there. The limit says how much could hide.
 //!
 //! The limit is Baarda's (1968) minimal detectable bias, with the baseline's parameters (the
-//! nuisance) free:
+//! nuisance) profiled out under their priors:
 //! - One strength parameter moves by delta typical magnitudes from its off value.
-//! - The test's non-centrality is then `lambda = delta^2 |P s|^2 / s2`. Here `s` is the screen's
-//!   sensitivity column (noise units per typical move, `crate::screen`), and `P` projects out the
-//!   directions the baseline can absorb. `s2` is the residual variance in noise units, at least 1
-//!   (the stated noise).
+//! - The test's non-centrality is then `lambda = delta^2 left / s2`. Here `left` is the information
+//!   left in the screen's sensitivity column `s` (noise units per typical move, `crate::screen`)
+//!   once the baseline takes what it can: `|s|^2 - s^T J (J^T J + Lambda)^+ J^T s`, with `J` the
+//!   baseline's Jacobian and `Lambda` its prior precisions (the Schur complement of the joint
+//!   information, as in the refit's Wald covariance). `s2` is the residual variance in noise
+//!   units, at least 1 (the stated noise).
 //! - The limit is the delta at which `lambda` reaches `lambda_0(alpha, power)`: the non-centrality
 //!   at which a one-degree-of-freedom test at level `alpha` rejects with that power. This is
 //!   `(z_{1-alpha} + z_power)^2`, with `alpha / 2` when the parameter can move both ways (Baarda
 //!   1968, NCG 2(5), Sec 2.3; Teunissen 2000, Testing theory, Sec 4.4).
 //! - It is linearised at the screen's probe (a tenth of the typical move).
 //!
-//! The nuisance's priors are left out of the projection, so the limit is on the conservative side.
-//! Passing the significance test is necessary for a claim, not sufficient: the held-out,
+//! Passing the significance test is necessary for a claim, not sufficient: the AICc, held-out,
 //! ambiguity and instrument checks come after it.
 
 use nalgebra::DMatrix;
@@ -137,7 +138,7 @@ pub(crate) fn limits(c: &Candidate, alpha: f64) -> Vec<DetectionLimit> {
             }
             if (down && below.is_none()) || (up && above.is_none()) {
                 notes.push(format!(
-                    "no move within the modelled range [{}, {}] would be detected on the side left open",
+                    "on the open side no move within the modelled range [{}, {}] reaches the limit",
                     pi.lower, pi.upper
                 ));
             }
