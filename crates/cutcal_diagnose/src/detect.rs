@@ -22,10 +22,13 @@
 
 use nalgebra::DMatrix;
 
+use crate::fit::{self, Fit, Obs, Spec};
 use crate::ftest::shape_params;
 use crate::mechanism::{info, MechanismId};
-use crate::problem::Candidate;
+use crate::problem::{Candidate, Problem};
 use crate::report::DetectionLimit;
+use crate::screen::nested_point;
+use crate::separate::Recorded;
 use crate::simulator::ParamSpec;
 use crate::stats::normal_sf;
 
@@ -89,12 +92,16 @@ pub(crate) fn unit_limits(
     s2: f64,
     id: MechanismId,
 ) -> Vec<ColumnLimit> {
+    column_limits(j, precision, s, s2, s.ncols().saturating_sub(shape_params(id)))
+}
+
+/// [`unit_limits`] of the first `strengths` columns of `s`.
+fn column_limits(j: &DMatrix<f64>, precision: &[f64], s: &DMatrix<f64>, s2: f64, strengths: usize) -> Vec<ColumnLimit> {
     // A baseline Jacobian that failed (no columns for the parameters free to move) leaves no limit:
     // one without the baseline's absorption would understate what could hide.
     if precision.len() != j.ncols() {
         return Vec::new();
     }
-    let strengths = s.ncols().saturating_sub(shape_params(id));
     let mut info = j.transpose() * j;
     for (i, p) in precision.iter().enumerate().take(info.nrows()) {
         info[(i, i)] += p;
@@ -197,6 +204,114 @@ pub(crate) fn unseen_sentence(cands: &[Candidate], alpha: f64) -> Option<String>
          {power:.0} % power (`detection_limits`): {}.",
         list.join("; ")
     ))
+}
+
+/// The limit of `c`'s first strength parameter on the observations `obs` at the baseline fit `base`,
+/// in typical moves per unit root non-centrality, at the stated noise (`s2` = 1): the sensitivity
+/// column by a forward step of a tenth of the typical move, the baseline's free columns by
+/// `fit::data_jacobian`, as in the screen. `None` where the model has no solution at a probe.
+fn first_limit(pr: &Problem<'_>, obs: &[Obs], base: &Fit, base_spec: &Spec, c: &Candidate) -> Option<f64> {
+    let noise = pr.cfg.noise;
+    let (_, lo, hi, _) = fit::layout(pr.sim, base_spec);
+    let cols: Vec<usize> =
+        (0..base.k).filter(|&i| (base.x[i] - lo[i]).min(hi[i] - base.x[i]) > 1e-6 * (hi[i] - lo[i])).collect();
+    let steps: Vec<f64> = cols.iter().map(|&i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
+    let j = fit::data_jacobian(pr.sim, pr.tests, obs, base_spec, &noise, &base.x, &cols, &steps).ok()?;
+    let pi = info(c.id).params[0];
+    let x0 = nested_point(&base.x, c.id);
+    let mut xp = x0.clone();
+    xp[base.k] += 0.1 * (pi.typical - pi.off);
+    let r0 = fit::residuals(obs, &fit::predict(pr.sim, pr.tests, &c.spec, &c.spec.ctx, &x0).ok()?, &noise);
+    let rp = fit::residuals(obs, &fit::predict(pr.sim, pr.tests, &c.spec, &c.spec.ctx, &xp).ok()?, &noise);
+    let s = DMatrix::from_iterator(obs.len(), 1, r0.iter().zip(&rp).map(|(a, b)| (b - a) / 0.1));
+    let limits = column_limits(&j, &precision(pr.sim.baseline_params(), &cols), &s, 1.0, 1);
+    limits.first().map(|l| l.unit).filter(|u| u.is_finite())
+}
+
+/// For a `none` verdict on recordings without the tool-chip interface temperature: which hidden
+/// mechanism recording it would expose most, and by how much its limit would narrow. Each test's
+/// interface temperature rise is added at the baseline's prediction with the assumed scatter
+/// (`Config::noise`, 10 % by default), and the limit of each mechanism that could hide at its
+/// typical size is computed with and without it (at the stated noise, linearised as above).
+pub(crate) fn interface_temperature_test(
+    pr: &Problem<'_>,
+    base: &Fit,
+    base_spec: &Spec,
+    cands: &[Candidate],
+    alpha: f64,
+) -> Option<String> {
+    if Recorded::of(pr.tests).interface_temperature {
+        return None;
+    }
+    let extra: Vec<Obs> = base
+        .preds
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Obs { test: i, output: 3, value: fit::output(p, 3) })
+        .filter(|o| o.value.is_finite() && o.value > 0.0)
+        .collect();
+    if extra.len() < pr.tests.len() {
+        return None;
+    }
+    let with: Vec<Obs> = pr.obs.iter().copied().chain(extra).collect();
+    let mut best: Option<(f64, &Candidate, f64, f64)> = None;
+    for c in cands.iter().filter(|c| limits(c, alpha).first().is_some_and(|l| l.typical_units.is_none_or(|t| t > 1.0)))
+    {
+        let (Some(now), Some(then)) =
+            (first_limit(pr, &pr.obs, base, base_spec, c), first_limit(pr, &with, base, base_spec, c))
+        else {
+            continue;
+        };
+        let gain = now / then;
+        if gain > 1.5 && best.as_ref().is_none_or(|b| gain > b.0) {
+            best = Some((gain, c, now, then));
+        }
+    }
+    // The interval the report states (`limits`, at the screen's residual variance), and the same
+    // narrowed by the ratio the two computations here give.
+    let (_, c, now_here, then_here) = best?;
+    let now = c.unit_limits.first()?.unit;
+    let then = now * then_here / now_here;
+    let pi = info(c.id).params[0];
+    let both = pi.off > pi.lower && pi.off < pi.upper;
+    let lambda = noncentrality(alpha, POWER, both).sqrt();
+    let unit = if pi.unit == "-" { String::new() } else { format!(" {}", pi.unit) };
+    // The interval of values that would hide, each end marked where it is the modelled range's.
+    let range = |u: f64| {
+        let step = u * lambda * (pi.typical - pi.off).abs();
+        let end = |v: f64, bound: f64, open: bool| match (open, (v - bound) * (pi.off - bound) <= 0.0) {
+            (false, _) => format!("{:.3}", pi.off),
+            (true, true) => format!("{bound:.3} (bound)"),
+            (true, false) => format!("{v:.3}"),
+        };
+        format!(
+            "[{}, {}]{unit}",
+            end(pi.off - step, pi.lower, pi.off > pi.lower),
+            end(pi.off + step, pi.upper, pi.off < pi.upper)
+        )
+    };
+    Some(format!(
+        "none needed to explain these data; to see a {} of typical size, record the tool-chip interface temperature \
+         (t_int_c) at these conditions: at {:.0} % scatter the values of {} that could hide would narrow from {} to {} \
+         (80 % power, linearised)",
+        c.id.as_str().replace('_', " "),
+        100.0 * pr.cfg.noise[3],
+        pi.name,
+        range(now),
+        range(then)
+    ))
+}
+
+/// A mechanism's detection limits in one line of the text report: each parameter's detected
+/// region, or that no move within its range is.
+pub(crate) fn limits_text(limits: &[DetectionLimit]) -> String {
+    let one = |l: &DetectionLimit| match (l.below, l.above) {
+        (Some(b), Some(a)) => format!("{} <= {b:.4} or >= {a:.4}", l.param),
+        (Some(b), None) => format!("{} <= {b:.4}", l.param),
+        (None, Some(a)) => format!("{} >= {a:.4}", l.param),
+        (None, None) => format!("{}: no move within its range", l.param),
+    };
+    limits.iter().map(one).collect::<Vec<_>>().join("; ")
 }
 
 #[cfg(test)]

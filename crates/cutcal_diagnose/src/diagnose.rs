@@ -23,7 +23,7 @@ use crate::heldout::heldout_round;
 use crate::instrument::stops_claim;
 use crate::locate::locate;
 use crate::mechanism::{info, testable, Context, MechanismId};
-use crate::narrative::{explain, next_test, result_of};
+use crate::narrative::{explain, next_test, result_of, simulator_notes};
 use crate::problem::{condition_groups, loco_of, rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
 use crate::screen::{cosine, screen_and_refit};
@@ -387,29 +387,23 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             after_pct: 100.0 * ((after_fit.resid[i] * noise[o.output]).exp() - 1.0),
         })
         .collect();
-    let next_test =
-        next_test(&pr, verdict, &accepted, &ambiguous, &first_round, &base, &base_spec, &current, &current_spec);
+    let next_test = next_test(
+        &pr,
+        verdict,
+        &accepted,
+        &ambiguous,
+        &first_round,
+        &base,
+        &base_spec,
+        &current,
+        &current_spec,
+        alpha_k,
+    );
     let mut explanation =
         explain(verdict, &mismatch, &accepted, &ambiguous, &first_round, &summary, conditions, &global, rec, alpha_k);
     for note in &notes {
         explanation.push(' ');
         explanation.push_str(note);
-    }
-    let mut simulator_notes = cfg.simulator_notes.clone();
-    if ctx0.order_from_rows && usable.contains(&MechanismId::FlankWear) {
-        simulator_notes.push(
-            "run order: no `order` or `flank_wear_mm` column, so the rows of the recordings are taken as the run \
-             order (for flank wear and the drift check)"
-                .into(),
-        );
-    }
-    if ctx0.vb_tests_smoothed > 0 && usable.contains(&MechanismId::FlankWear) {
-        simulator_notes.push(format!(
-            "flank wear: the measured VB falls along the run order, so it was read as one tool's wear with \
-             reading scatter and made non-decreasing (least squares; {} of {} tests moved)",
-            ctx0.vb_tests_smoothed,
-            tests.len()
-        ));
     }
     Ok(Report {
         verdict,
@@ -439,7 +433,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         residuals,
         noise_source: noise_model.source.to_vec(),
         calibration: calibration_text,
-        simulator_notes,
+        simulator_notes: simulator_notes(&cfg.simulator_notes, &ctx0, &usable, tests.len()),
         shadow_rms_pct: None,
         shadow_friction_factor: None,
         shadow_edge_radius_um: None,

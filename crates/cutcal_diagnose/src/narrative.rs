@@ -92,6 +92,32 @@ pub(crate) fn result_of(
     }
 }
 
+/// The report's notes about the simulator and the reading of the recordings: the caller's (the
+/// shadow fit's) and, where flank wear is testable, how its run order and VB were read.
+pub(crate) fn simulator_notes(
+    given: &[String],
+    ctx: &crate::context::Context,
+    usable: &[MechanismId],
+    tests: usize,
+) -> Vec<String> {
+    let mut notes = given.to_vec();
+    if ctx.order_from_rows && usable.contains(&MechanismId::FlankWear) {
+        notes.push(
+            "run order: no `order` or `flank_wear_mm` column, so the rows of the recordings are taken as the run \
+             order (for flank wear and the drift check)"
+                .into(),
+        );
+    }
+    if ctx.vb_tests_smoothed > 0 && usable.contains(&MechanismId::FlankWear) {
+        notes.push(format!(
+            "flank wear: the measured VB falls along the run order, so it was read as one tool's wear with \
+             reading scatter and made non-decreasing (least squares; {} of {tests} tests moved)",
+            ctx.vb_tests_smoothed
+        ));
+    }
+    notes
+}
+
 /// `Some(v)` for a finite number, `None` otherwise (reports never carry NaN or inf).
 fn finite(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
@@ -108,11 +134,14 @@ pub(crate) fn next_test(
     base_spec: &Spec,
     current: &Fit,
     current_spec: &Spec,
+    alpha: f64,
 ) -> String {
     let find = |m: MechanismId| cands.iter().find(|c| c.id == m);
     match verdict {
         Verdict::None => {
-            "none needed: no significant mismatch; add conditions only to widen the validated range".into()
+            crate::detect::interface_temperature_test(pr, base, base_spec, cands, alpha).unwrap_or_else(|| {
+                "none needed: no significant mismatch; add conditions only to widen the validated range".into()
+            })
         }
         Verdict::Unexplained => unexplained_next_test(pr, cands, base, base_spec),
         Verdict::MissingPhysics => {

@@ -341,7 +341,11 @@ impl Report {
                 m.reason
             );
             if !m.detection_limits.is_empty() {
-                let _ = writeln!(s, "      detected with 80 % power beyond: {}", limits_text(&m.detection_limits));
+                let _ = writeln!(
+                    s,
+                    "      detected with 80 % power beyond: {}",
+                    crate::detect::limits_text(&m.detection_limits)
+                );
             }
         }
         if !self.not_testable.is_empty() {
@@ -398,17 +402,6 @@ fn params_text(m: &MechanismResult) -> String {
         params.push(format!("({n})"));
     }
     params.join("; ")
-}
-
-/// A mechanism's detection limits in one line: each parameter's detected region, or why none.
-fn limits_text(limits: &[DetectionLimit]) -> String {
-    let f = |l: &DetectionLimit| match (l.below, l.above) {
-        (Some(b), Some(a)) => format!("{} <= {b:.4} or >= {a:.4}", l.param),
-        (Some(b), None) => format!("{} <= {b:.4}", l.param),
-        (None, Some(a)) => format!("{} >= {a:.4}", l.param),
-        (None, None) => format!("{}: no move within its range", l.param),
-    };
-    limits.iter().map(f).collect::<Vec<_>>().join("; ")
 }
 
 #[cfg(test)]

@@ -409,7 +409,7 @@ fn other_gates(pr: &Problem<'_>, s: &mut Screened, x0: &[f64], current: &Fit, mu
 
 /// The current parameters `x` followed by mechanism `id`'s fitted parameters at their off values:
 /// the point at which the model with `id` added reproduces the current model.
-fn nested_point(x: &[f64], id: MechanismId) -> Vec<f64> {
+pub(crate) fn nested_point(x: &[f64], id: MechanismId) -> Vec<f64> {
     let mut out = x.to_vec();
     out.extend(info(id).params.iter().take(fit::fitted_len(id)).map(|p| p.off));
     out
