@@ -206,17 +206,31 @@ pub(crate) fn unseen_sentence(cands: &[Candidate], alpha: f64) -> Option<String>
     ))
 }
 
-/// The limit of `c`'s first strength parameter on the observations `obs` at the baseline fit `base`,
-/// in typical moves per unit root non-centrality, at the stated noise (`s2` = 1): the sensitivity
-/// column by a forward step of a tenth of the typical move, the baseline's free columns by
-/// `fit::data_jacobian`, as in the screen. `None` where the model has no solution at a probe.
-fn first_limit(pr: &Problem<'_>, obs: &[Obs], base: &Fit, base_spec: &Spec, c: &Candidate) -> Option<f64> {
-    let noise = pr.cfg.noise;
+/// The baseline's Jacobian (its free columns, as in the screen) on the observations `obs`, with the
+/// columns' prior precisions. `None` where the model has no solution at a probe.
+fn baseline_jacobian(pr: &Problem<'_>, obs: &[Obs], base: &Fit, base_spec: &Spec) -> Option<(DMatrix<f64>, Vec<f64>)> {
     let (_, lo, hi, _) = fit::layout(pr.sim, base_spec);
     let cols: Vec<usize> =
         (0..base.k).filter(|&i| (base.x[i] - lo[i]).min(hi[i] - base.x[i]) > 1e-6 * (hi[i] - lo[i])).collect();
     let steps: Vec<f64> = cols.iter().map(|&i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
-    let j = fit::data_jacobian(pr.sim, pr.tests, obs, base_spec, &noise, &base.x, &cols, &steps).ok()?;
+    let j = fit::data_jacobian(pr.sim, pr.tests, obs, base_spec, &pr.cfg.noise, &base.x, &cols, &steps).ok()?;
+    Some((j, precision(pr.sim.baseline_params(), &cols)))
+}
+
+/// The limit of `c`'s first strength parameter at the baseline fit, in typical moves per unit root
+/// non-centrality at the stated noise (`s2` = 1), on the first `n` observations of `obs` and on all
+/// of them (`jp`: the baseline's Jacobian on `obs` and its precisions). The sensitivity column is a
+/// forward step of a tenth of the typical move, as in the screen. `None` where the model has no
+/// solution at the probe or a limit is infinite.
+fn first_limits(
+    pr: &Problem<'_>,
+    obs: &[Obs],
+    n: usize,
+    jp: &(DMatrix<f64>, Vec<f64>),
+    base: &Fit,
+    c: &Candidate,
+) -> Option<(f64, f64)> {
+    let noise = pr.cfg.noise;
     let pi = info(c.id).params[0];
     let x0 = nested_point(&base.x, c.id);
     let mut xp = x0.clone();
@@ -224,8 +238,11 @@ fn first_limit(pr: &Problem<'_>, obs: &[Obs], base: &Fit, base_spec: &Spec, c: &
     let r0 = fit::residuals(obs, &fit::predict(pr.sim, pr.tests, &c.spec, &c.spec.ctx, &x0).ok()?, &noise);
     let rp = fit::residuals(obs, &fit::predict(pr.sim, pr.tests, &c.spec, &c.spec.ctx, &xp).ok()?, &noise);
     let s = DMatrix::from_iterator(obs.len(), 1, r0.iter().zip(&rp).map(|(a, b)| (b - a) / 0.1));
-    let limits = column_limits(&j, &precision(pr.sim.baseline_params(), &cols), &s, 1.0, 1);
-    limits.first().map(|l| l.unit).filter(|u| u.is_finite())
+    let (j, prec) = jp;
+    let unit = |j: DMatrix<f64>, s: DMatrix<f64>| column_limits(&j, prec, &s, 1.0, 1).first().map(|l| l.unit);
+    let now = unit(j.rows(0, n).into_owned(), s.rows(0, n).into_owned())?;
+    let then = unit(j.clone(), s)?;
+    (now.is_finite() && then.is_finite()).then_some((now, then))
 }
 
 /// For a `none` verdict on recordings without the tool-chip interface temperature: which hidden
@@ -254,14 +271,11 @@ pub(crate) fn interface_temperature_test(
         return None;
     }
     let with: Vec<Obs> = pr.obs.iter().copied().chain(extra).collect();
+    let jp = baseline_jacobian(pr, &with, base, base_spec)?;
     let mut best: Option<(f64, &Candidate, f64, f64)> = None;
     for c in cands.iter().filter(|c| limits(c, alpha).first().is_some_and(|l| l.typical_units.is_none_or(|t| t > 1.0)))
     {
-        let (Some(now), Some(then)) =
-            (first_limit(pr, &pr.obs, base, base_spec, c), first_limit(pr, &with, base, base_spec, c))
-        else {
-            continue;
-        };
+        let Some((now, then)) = first_limits(pr, &with, pr.obs.len(), &jp, base, c) else { continue };
         let gain = now / then;
         if gain > 1.5 && best.as_ref().is_none_or(|b| gain > b.0) {
             best = Some((gain, c, now, then));
