@@ -30,32 +30,10 @@ use crate::report::DetectionLimit;
 use crate::screen::nested_point;
 use crate::separate::Recorded;
 use crate::simulator::ParamSpec;
-use crate::stats::normal_sf;
+use crate::stats::normal_isf;
 
 /// The power at which the limit is stated.
 pub const POWER: f64 = 0.8;
-
-/// Cap on the bisection steps of [`normal_isf`].
-const BISECTION_STEPS: usize = 200;
-
-/// The standard normal upper quantile: `z` with `P(Z > z) = p`, by bisection on `normal_sf` over
-/// [-40, 40] (capped at 200 halvings, far below f64's resolution there).
-#[must_use]
-pub fn normal_isf(p: f64) -> f64 {
-    let (mut lo, mut hi) = (-40.0f64, 40.0f64);
-    for _ in 0..BISECTION_STEPS {
-        let mid = 0.5 * (lo + hi);
-        if normal_sf(mid) > p {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        if hi - lo < 1e-12 {
-            break;
-        }
-    }
-    0.5 * (lo + hi)
-}
 
 /// Non-centrality at which a one-degree-of-freedom test at level `alpha` rejects with `power`
 /// (Baarda 1968): `(z_{1-alpha'} + z_power)^2`, `alpha' = alpha / 2` when two-sided.
@@ -209,10 +187,7 @@ pub(crate) fn unseen_sentence(cands: &[Candidate], alpha: f64) -> Option<String>
 /// The baseline's Jacobian (its free columns, as in the screen) on the observations `obs`, with the
 /// columns' prior precisions. `None` where the model has no solution at a probe.
 fn baseline_jacobian(pr: &Problem<'_>, obs: &[Obs], base: &Fit, base_spec: &Spec) -> Option<(DMatrix<f64>, Vec<f64>)> {
-    let (_, lo, hi, _) = fit::layout(pr.sim, base_spec);
-    let cols: Vec<usize> =
-        (0..base.k).filter(|&i| (base.x[i] - lo[i]).min(hi[i] - base.x[i]) > 1e-6 * (hi[i] - lo[i])).collect();
-    let steps: Vec<f64> = cols.iter().map(|&i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
+    let (cols, steps) = fit::free_columns(pr.sim, base_spec, &base.x);
     let j = fit::data_jacobian(pr.sim, pr.tests, obs, base_spec, &pr.cfg.noise, &base.x, &cols, &steps).ok()?;
     Some((j, precision(pr.sim.baseline_params(), &cols)))
 }
@@ -331,6 +306,7 @@ pub(crate) fn limits_text(limits: &[DetectionLimit]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::stats::normal_sf;
 
     #[test]
     fn the_quantiles_and_baardas_noncentralities_are_the_published_ones() {

@@ -117,6 +117,18 @@ pub fn residuals(obs: &[Obs], preds: &[Prediction], noise: &[f64; NOUT]) -> Vec<
     obs.iter().map(|o| (o.value / output(&preds[o.test], o.output)).ln() / noise[o.output]).collect()
 }
 
+/// The parameters of `spec` at `x` that can still move both ways (more than 1e-6 of their range
+/// from either bound), with the forward-difference step of each (1e-4 of its range), for
+/// [`data_jacobian`]: a parameter held at a bound cannot absorb a signature that needs it beyond.
+#[must_use]
+pub fn free_columns(sim: &dyn Simulator, spec: &Spec, x: &[f64]) -> (Vec<usize>, Vec<f64>) {
+    let (_, lo, hi, _) = layout(sim, spec);
+    let cols: Vec<usize> =
+        (0..x.len().min(lo.len())).filter(|&i| (x[i] - lo[i]).min(hi[i] - x[i]) > 1e-6 * (hi[i] - lo[i])).collect();
+    let steps = cols.iter().map(|&i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
+    (cols, steps)
+}
+
 /// Bounds, start and names of the parameter vector of `spec`.
 #[must_use]
 pub fn layout(sim: &dyn Simulator, spec: &Spec) -> (Vec<String>, Vec<f64>, Vec<f64>, Vec<f64>) {

@@ -42,15 +42,12 @@ pub(crate) fn screen_and_refit(
     let mut lost = Vec::new();
     let noise = pr.cfg.noise;
     let n = pr.n();
-    let (_, lo, hi, _) = fit::layout(pr.sim, current_spec);
     // Absorbability is judged along the directions the current parameters can still move in both
     // ways: a parameter held at a bound (e.g. JC n at its floor) cannot absorb a signature that needs
     // it beyond the bound, so its column is left out of the projection (the refit, with the
     // parameter free inside its box, decides). The screen only ranks candidates for the refit; the
     // acceptance tests are unchanged.
-    let cols: Vec<usize> =
-        (0..current.k).filter(|&i| (current.x[i] - lo[i]).min(hi[i] - current.x[i]) > 1e-6 * (hi[i] - lo[i])).collect();
-    let steps: Vec<f64> = cols.iter().map(|&i| 1e-4 * (hi[i] - lo[i]).max(1e-9)).collect();
+    let (cols, steps) = fit::free_columns(pr.sim, current_spec, &current.x);
     // A Jacobian probe outside the model's solvable region leaves the screen unprojected.
     let j = data_jacobian(pr.sim, pr.tests, &pr.obs, current_spec, &noise, &current.x, &cols, &steps)
         .unwrap_or_else(|_| DMatrix::zeros(n, 0));

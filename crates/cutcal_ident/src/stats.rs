@@ -123,6 +123,25 @@ pub fn normal_sf(z: f64) -> f64 {
     0.5 * erfc(z / std::f64::consts::SQRT_2)
 }
 
+/// The standard normal upper quantile: `z` with `P(Z > z) = p`, by bisection on [`normal_sf`] over
+/// [-40, 40], stopped once the bracket is two adjacent floats (capped at 200 halvings).
+#[must_use]
+pub fn normal_isf(p: f64) -> f64 {
+    let (mut lo, mut hi) = (-40.0_f64, 40.0_f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid.to_bits() == lo.to_bits() || mid.to_bits() == hi.to_bits() {
+            break;
+        }
+        if normal_sf(mid) > p {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
 /// Regularised upper incomplete gamma `Q(a, x)` (series for `x < a + 1`, continued fraction otherwise).
 #[must_use]
 pub fn gamma_q(a: f64, x: f64) -> f64 {
@@ -266,6 +285,8 @@ mod tests {
         // Standard normal table: P(Z > 1.959964) = 0.025, P(Z > 0) = 0.5.
         assert!((normal_sf(1.959_964) - 0.025).abs() < 1e-6);
         assert!((normal_sf(0.0) - 0.5).abs() < 1e-7);
+        // And its inverse (to the tail approximation's accuracy): z_0.975 = 1.959964, z_0.5 = 0.
+        assert!((normal_isf(0.025) - 1.959_964).abs() < 1e-6 && normal_isf(0.5).abs() < 1e-6);
     }
 
     #[test]
