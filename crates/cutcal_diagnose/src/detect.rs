@@ -77,24 +77,12 @@ pub(crate) fn unit_limits(
 fn column_limits(j: &DMatrix<f64>, precision: &[f64], s: &DMatrix<f64>, s2: f64, strengths: usize) -> Vec<ColumnLimit> {
     // A baseline Jacobian that failed (no columns for the parameters free to move) leaves no limit:
     // one without the baseline's absorption would understate what could hide.
-    if precision.len() != j.ncols() {
-        return Vec::new();
-    }
-    let mut info = j.transpose() * j;
-    for (i, p) in precision.iter().enumerate().take(info.nrows()) {
-        info[(i, i)] += p;
-    }
-    let inverse = if j.ncols() == 0 { None } else { info.pseudo_inverse(1e-12).ok() };
-    (0..strengths)
+    let Some(taken) = taken_by_baseline(j, precision, s) else { return Vec::new() };
+    (0..strengths.min(s.ncols()))
         .map(|c| {
-            let sc = s.column(c);
-            let total = sc.norm_squared();
-            let taken = inverse.as_ref().map_or(0.0, |inv| {
-                let g = j.transpose() * sc;
-                (g.transpose() * inv * &g)[(0, 0)]
-            });
-            let left = (total - taken).max(0.0);
-            let absorbed = if total > 0.0 { (taken / total).clamp(0.0, 1.0) } else { 1.0 };
+            let total = s.column(c).norm_squared();
+            let left = (total - taken[c]).max(0.0);
+            let absorbed = if total > 0.0 { (taken[c] / total).clamp(0.0, 1.0) } else { 1.0 };
             let unit = if left > 1e-12 * total.max(1e-300) && left.is_finite() {
                 (s2.max(1.0) / left).sqrt()
             } else {
@@ -103,6 +91,43 @@ fn column_limits(j: &DMatrix<f64>, precision: &[f64], s: &DMatrix<f64>, s2: f64,
             ColumnLimit { unit, absorbed }
         })
         .collect()
+}
+
+/// The share of the signature `s` (all its columns) that the baseline, with the columns `j` and
+/// the prior precisions `precision`, can produce: `sum_c s_c^T J (J^T J + Lambda)^+ J^T s_c` over
+/// `sum_c |s_c|^2`, in [0, 1]. A Jacobian that failed takes nothing (0), as the screen's
+/// unprojected score test then assumes.
+pub(crate) fn absorbed_share(j: &DMatrix<f64>, precision: &[f64], s: &DMatrix<f64>) -> f64 {
+    let total = s.norm_squared();
+    match taken_by_baseline(j, precision, s) {
+        Some(taken) if total > 0.0 => (taken.iter().sum::<f64>() / total).clamp(0.0, 1.0),
+        Some(_) => 1.0,
+        None => 0.0,
+    }
+}
+
+/// Per column of `s`, the part of `|s_c|^2` the baseline takes under its priors,
+/// `s_c^T J (J^T J + Lambda)^+ J^T s_c`; `None` when the Jacobian failed (`precision` and `j` then
+/// disagree in length).
+fn taken_by_baseline(j: &DMatrix<f64>, precision: &[f64], s: &DMatrix<f64>) -> Option<Vec<f64>> {
+    if precision.len() != j.ncols() {
+        return None;
+    }
+    let mut info = j.transpose() * j;
+    for (i, p) in precision.iter().enumerate().take(info.nrows()) {
+        info[(i, i)] += p;
+    }
+    let inverse = if j.ncols() == 0 { None } else { info.pseudo_inverse(1e-12).ok() };
+    Some(
+        (0..s.ncols())
+            .map(|c| {
+                inverse.as_ref().map_or(0.0, |inv| {
+                    let g = j.transpose() * s.column(c);
+                    (g.transpose() * inv * &g)[(0, 0)]
+                })
+            })
+            .collect(),
+    )
 }
 
 /// The candidate's detection limits in its parameters' units, at level `alpha`.
@@ -353,5 +378,10 @@ mod tests {
         let tied = unit_limits(&j, &[1.0], &s, 1.0, MechanismId::HeatPartition);
         assert!((tied[0].unit - 0.5f64.sqrt()).abs() < 1e-12 && (tied[0].absorbed - 0.5).abs() < 1e-12);
         assert!((tied[1].unit - 1.0 / 20.5f64.sqrt()).abs() < 1e-12);
+        // The signature's share the baseline produces, over both columns: without a prior 4 + 9 of
+        // 29; with the prior 2 + 4.5 of 29; with a failed Jacobian (no columns) nothing.
+        assert!((absorbed_share(&j, &[0.0], &s) - 13.0 / 29.0).abs() < 1e-12);
+        assert!((absorbed_share(&j, &[1.0], &s) - 6.5 / 29.0).abs() < 1e-12);
+        assert_eq!(absorbed_share(&DMatrix::zeros(3, 0), &[1.0], &s), 0.0);
     }
 }

@@ -324,7 +324,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             accepted.push(cands[b].id);
         }
         for c in &cands {
-            all_results.push(result_of(c, sim, base_loco.as_ref(), &pr.obs, &noise, alpha_round));
+            all_results.push(result_of(c, base_loco.as_ref(), &pr.obs, &noise, alpha_round));
         }
         match chosen {
             Some(b) => {

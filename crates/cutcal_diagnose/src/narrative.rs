@@ -11,11 +11,11 @@ use crate::mechanism::{info, MechanismId};
 use crate::problem::{rms_pct, Candidate, Loco, Problem};
 use crate::report::*;
 use crate::separate::{own_test, runner_up_sentence, runner_up_test, separating_test, Recorded};
-use crate::simulator::Simulator;
 
+/// The report entry of candidate `c`: its parameters with their intervals, its checks, and its
+/// detection limits at the round's level `alpha`.
 pub(crate) fn result_of(
     c: &Candidate,
-    _sim: &dyn Simulator,
     base_loco: Option<&Loco>,
     obs: &[Obs],
     noise: &[f64; crate::fit::NOUT],

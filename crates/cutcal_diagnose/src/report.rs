@@ -84,7 +84,9 @@ pub struct MechanismResult {
     pub heldout_rms_after: Option<f64>,
     /// Share of the baseline misfit the mechanism removes in-sample.
     pub explained_fraction: f64,
-    /// Share of the mechanism's signature the baseline parameters can absorb (linearised).
+    /// Share of the mechanism's signature the baseline parameters can produce within their stated
+    /// priors (linearised at the screen's probe; `crate::detect::absorbed_share`): near 1, the
+    /// nuisance alone could account for this mechanism's effect.
     pub absorption: f64,
     /// Score-test p-value from the screen; `None` when there are too few numbers for the test.
     pub screen_p_value: Option<f64>,

@@ -132,8 +132,7 @@ pub(crate) fn screen_and_refit(
                 continue;
             }
             let sp = project_out(&j, &s);
-            let total = s.norm_squared();
-            let absorption = if total > 0.0 { 1.0 - sp.norm_squared() / total } else { 1.0 };
+            let absorption = crate::detect::absorbed_share(&j, &precision, &s);
             let spts = sp.transpose() * &sp;
             let u = match spts.clone().try_inverse() {
                 Some(inv) => {
