@@ -347,6 +347,28 @@ mod tests {
     }
 
     proptest::proptest! {
+        /// The absorbed share lies in [0, 1]; with no prior it is the share the orthogonal
+        /// projection onto the baseline's columns takes (`fit::project_out`, an SVD, computed
+        /// independently of the pseudo-inverse used here); a tighter prior never lets the baseline
+        /// take more.
+        #[test]
+        fn the_absorbed_share_is_the_projection_without_priors_and_falls_as_they_tighten(
+            vals in proptest::collection::vec(-1.0f64..1.0, 7 * 5),
+            prec in proptest::collection::vec(0.0f64..4.0, 3),
+        ) {
+            let j = DMatrix::from_column_slice(7, 3, &vals[..21]);
+            let s = DMatrix::from_column_slice(7, 2, &vals[21..35]);
+            proptest::prop_assume!(s.norm_squared() > 1e-6);
+            let free = absorbed_share(&j, &[0.0; 3], &s);
+            let projected = 1.0 - fit::project_out(&j, &s).norm_squared() / s.norm_squared();
+            proptest::prop_assert!((free - projected).abs() < 1e-8, "{free} vs {projected}");
+            let tied = absorbed_share(&j, &prec, &s);
+            let tighter: Vec<f64> = prec.iter().map(|p| 2.0 * p + 0.1).collect();
+            let tightest = absorbed_share(&j, &tighter, &s);
+            proptest::prop_assert!((0.0..=1.0).contains(&tied) && (0.0..=1.0).contains(&tightest));
+            proptest::prop_assert!(tied <= free + 1e-9 && tightest <= tied + 1e-9, "{free} {tied} {tightest}");
+        }
+
         /// The quantile inverts the tail, and the non-centrality grows as the level tightens and as
         /// the power rises.
         #[test]
