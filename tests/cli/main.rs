@@ -9,6 +9,7 @@ mod catalogue;
 mod determinism;
 mod hidden;
 mod identify;
+mod noise;
 mod pipe;
 mod predict;
 mod real_cases;

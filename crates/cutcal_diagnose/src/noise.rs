@@ -2,12 +2,15 @@
 //! temperature rise, taken from the
 //! data when they say it (issue 13, item 2; issue 10, item 4), else the stated defaults.
 //!
-//! Order of preference per output: (1) the per-row uncertainty columns (`*_sd_*`, e.g. written by
-//! `cutcal recordings`), their median relative value when at least half the measured rows state
-//! one; (2) the pooled spread of `ln y` over repeated tests at one condition, when that gives at
-//! least 3 degrees of freedom, combined with the default as a prior (below); (3) the design note's
-//! defaults (3 %, 5 %, 5 %). A floor of 0.5 % keeps a lucky repeat from claiming a precision no
-//! dynamometer has.
+//! Order of preference per output:
+//! 1. the per-row uncertainty columns (`*_sd_*`, e.g. written by `cutcal recordings`; `t_int_sd_c`
+//!    for the interface temperature, taken relative to its rise above `fit::T_REF_C`), their median
+//!    relative value when at least half the measured rows state one;
+//! 2. the pooled spread of `ln y` over repeated tests at one condition, when that gives at least 3
+//!    degrees of freedom, combined with the default as a prior (below);
+//! 3. the design note's defaults (3 %, 5 %, 5 %, and 10 % of the interface temperature rise).
+//!
+//! A floor of 0.5 % keeps a lucky repeat from claiming a precision no dynamometer has.
 //!
 //! A few repeats say little about a variance: with 3 degrees of freedom the pooled sd falls below
 //! half the true one with probability `P(chi2_3 < 0.75)` = 14 %. Taken alone, such an estimate made
@@ -53,7 +56,8 @@ pub fn from_data(tests: &[CuttingTest], groups: &[Vec<usize>], default: [f64; NO
     };
     let sd_of = |t: &CuttingTest, j: usize| {
         let s = t.measured.sd;
-        [s.cutting_force_n_per_m, s.feed_force_n_per_m, s.chip_thickness_m, None][j].filter(|v| *v > 0.0)
+        [s.cutting_force_n_per_m, s.feed_force_n_per_m, s.chip_thickness_m, s.interface_temperature_c][j]
+            .filter(|v| *v > 0.0)
     };
     let mut sd = default;
     let mut source: [String; NOUT] = std::array::from_fn(|j| format!("assumed default {:.0} %", 100.0 * default[j]));
@@ -140,5 +144,22 @@ mod tests {
         // Relative 0.02 and 0.03: the median of two is the upper one.
         let nm = from_data(&tests, &[vec![0], vec![1]], [0.03, 0.05, 0.05, 0.1]);
         assert!((nm.sd[0] - 0.03).abs() < 1e-12 && nm.source[0].contains("per-row"));
+    }
+
+    #[test]
+    fn an_interface_temperature_sd_column_is_relative_to_the_rise() {
+        // 520 degC with sd 25 K: 25 / (520 - 20) = 5 % of the rise; 420 degC with sd 12 K: 3 %.
+        // The median of two is the upper one, 5 % (4.8 % had it been taken on 520 degC itself).
+        let mut tests = vec![test("a", 2.0, 1000.0), test("b", 3.0, 2000.0)];
+        for (t, (tc, s)) in tests.iter_mut().zip([(520.0, 25.0), (420.0, 12.0)]) {
+            t.measured.interface_temperature_c = Some(tc);
+            t.measured.sd = MeasuredSd { interface_temperature_c: Some(s), ..MeasuredSd::default() };
+        }
+        let nm = from_data(&tests, &[vec![0], vec![1]], [0.03, 0.05, 0.05, 0.1]);
+        assert!((nm.sd[3] - 0.05).abs() < 1e-12 && nm.source[3].contains("per-row"), "{nm:?}");
+        // Without the column the default stands, and says so.
+        tests.iter_mut().for_each(|t| t.measured.sd = MeasuredSd::default());
+        let nm = from_data(&tests, &[vec![0], vec![1]], [0.03, 0.05, 0.05, 0.1]);
+        assert!(nm.sd[3] == 0.1 && nm.source[3] == "assumed default 10 %", "{nm:?}");
     }
 }

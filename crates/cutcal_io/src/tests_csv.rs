@@ -7,7 +7,7 @@
 //! - optional: `chip_mm`, `edge_radius_um`, `flank_wear_mm`, `order`, `t_int_c`;
 //! - optional per-row uncertainty (standard deviations, same units as the value columns):
 //!   `fc_sd_n_per_mm`, `ft_sd_n_per_mm` with per-width forces or `fc_sd_n`, `ft_sd_n` with totals,
-//!   and `chip_sd_mm`; they go to [`CuttingTest::with_measurement_sd`];
+//!   `chip_sd_mm` and `t_int_sd_c` (K); they go to [`CuttingTest::with_measurement_sd`];
 //! - optional covariates written by `cutcal recordings` (0/1): `wear_flag` (significant drift across
 //!   the steady window, possible tool wear) and `bue_flag` (strong low-frequency oscillation,
 //!   possible built-up edge); they are checked here and left to the diagnosis.
@@ -27,7 +27,7 @@ use super::{model_reason, read_text, InputError};
 pub use crate::test_columns::{derive_sd_from_repeats, Columns, MeasuredColumn};
 
 pub(crate) const REQUIRED: [&str; 5] = ["test", "speed_m_min", "uncut_mm", "width_mm", "rake_deg"];
-pub(crate) const OPTIONAL: [&str; 17] = [
+pub(crate) const OPTIONAL: [&str; 18] = [
     "fc_n_per_mm",
     "ft_n_per_mm",
     "fc_n",
@@ -37,6 +37,7 @@ pub(crate) const OPTIONAL: [&str; 17] = [
     "fc_sd_n",
     "ft_sd_n",
     "chip_sd_mm",
+    "t_int_sd_c",
     "wear_flag",
     "bue_flag",
     "chip_mm",
@@ -229,7 +230,8 @@ pub fn parse_tests_with_columns(path: &Path, text: &str) -> Result<(Vec<CuttingT
             )
         };
         let chip_sd = num("chip_sd_mm", false)?.map(|c| c * 1e-3);
-        for (name, v) in [(fc_sd_name, fc_sd), (ft_sd_name, ft_sd), ("chip_sd_mm", chip_sd)] {
+        let tint_sd = num("t_int_sd_c", false)?;
+        for (name, v) in [(fc_sd_name, fc_sd), (ft_sd_name, ft_sd), ("chip_sd_mm", chip_sd), ("t_int_sd_c", tint_sd)] {
             if v.is_some_and(|x| x <= 0.0) {
                 return Err(InputError::new(path, line, name, cell(name), "a standard deviation must be > 0"));
             }
@@ -239,11 +241,15 @@ pub fn parse_tests_with_columns(path: &Path, text: &str) -> Result<(Vec<CuttingT
                 cutting_force_n_per_m: fc_sd,
                 feed_force_n_per_m: ft_sd,
                 chip_thickness_m: chip_sd,
+                interface_temperature_c: tint_sd,
             })
             .map_err(|e| {
                 let field = match &e {
                     cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("feed") => ft_sd_name,
                     cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("chip") => "chip_sd_mm",
+                    cutcal_model::ModelError::OutOfRange { field, .. } if field.starts_with("interface") => {
+                        "t_int_sd_c"
+                    }
                     _ => fc_sd_name,
                 };
                 InputError::new(path, line, field, cell(field), model_reason(&e))

@@ -23,7 +23,8 @@ pub struct Measured {
 /// data do not state one and callers fall back to their documented default noise model.
 ///
 /// Filled from the tests CSV columns `fc_sd_n_per_mm`, `ft_sd_n_per_mm`, `chip_sd_mm` (for instance
-/// as written by `cutcal recordings`), or from the spread of repeated tests at one condition.
+/// as written by `cutcal recordings`) and `t_int_sd_c`, or from the spread of repeated tests at one
+/// condition.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct MeasuredSd {
     /// Standard deviation of the cutting force per unit width, N/m.
@@ -32,6 +33,10 @@ pub struct MeasuredSd {
     pub feed_force_n_per_m: Option<f64>,
     /// Standard deviation of the chip thickness, m.
     pub chip_thickness_m: Option<f64>,
+    /// Standard deviation of the tool-chip interface temperature, K (the thermocouple's or the
+    /// camera's stated uncertainty).
+    #[serde(default)]
+    pub interface_temperature_c: Option<f64>,
 }
 
 /// An orthogonal cutting test.
@@ -130,7 +135,7 @@ impl CuttingTest {
         Ok(self)
     }
 
-    /// Sets the standard deviations of the measurements (N/m, N/m, m); each must be finite and > 0.
+    /// Sets the standard deviations of the measurements (N/m, N/m, m, K); each must be finite and > 0.
     ///
     /// Returns an error naming the field if a value is not finite or not positive.
     pub fn with_measurement_sd(mut self, sd: MeasuredSd) -> Result<Self, ModelError> {
@@ -138,6 +143,7 @@ impl CuttingTest {
             ("cutting_force_sd_n_per_m", sd.cutting_force_n_per_m),
             ("feed_force_sd_n_per_m", sd.feed_force_n_per_m),
             ("chip_thickness_sd_m", sd.chip_thickness_m),
+            ("interface_temperature_sd_c", sd.interface_temperature_c),
         ] {
             if let Some(x) = v {
                 check_range(field, x, 0.0, 1e7, "0 < sd <= 1e7 (SI)")?;

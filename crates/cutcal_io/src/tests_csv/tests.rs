@@ -115,6 +115,18 @@ fn sd_columns_are_read_in_si() {
     assert!((sd.cutting_force_n_per_m.unwrap() - 3500.0).abs() < 1e-9);
     assert!((sd.feed_force_n_per_m.unwrap() - 2250.0).abs() < 1e-9);
     assert!((sd.chip_thickness_m.unwrap() - 4e-6).abs() < 1e-18);
+    assert_eq!(sd.interface_temperature_c, None);
+}
+
+#[test]
+fn an_interface_temperature_sd_is_read_in_kelvin_and_checked() {
+    let head = "test,speed_m_min,uncut_mm,width_mm,rake_deg,t_int_c,t_int_sd_c\n";
+    let t = parse(&format!("{head}1,240,0.075,1.95,0,612,30.5\n")).unwrap();
+    assert_eq!(t[0].measured.sd.interface_temperature_c, Some(30.5));
+    for bad in ["0", "-4", "nan", "1e9"] {
+        let e = parse(&format!("{head}1,240,0.075,1.95,0,612,{bad}\n")).unwrap_err();
+        assert_eq!((e.line, e.field.as_str(), e.value.as_str()), (Some(2), "t_int_sd_c", bad), "{e}");
+    }
 }
 
 #[test]
