@@ -132,7 +132,6 @@ pub(crate) fn screen_and_refit(
                 continue;
             }
             let sp = project_out(&j, &s);
-            let absorption = crate::detect::absorbed_share(&j, &precision, &s);
             let spts = sp.transpose() * &sp;
             let u = match spts.clone().try_inverse() {
                 Some(inv) => {
@@ -151,6 +150,7 @@ pub(crate) fn screen_and_refit(
             if best.as_ref().is_none_or(|b| u > b.u) {
                 let sens = s.column(0).iter().copied().collect();
                 let unit_limits = crate::detect::unit_limits(&j, &precision, &s, s2, m);
+                let absorption = crate::detect::absorbed_share(&j, &precision, &s);
                 best = Some(Screened { id: m, spec, u, p, absorption, sens, unit_limits, other_gates: Vec::new() });
             }
         }
