@@ -1,6 +1,7 @@
 //! A stated interface-temperature uncertainty (`t_int_sd_c`, K per row) sets the noise the
 //! diagnosis weighs the interface temperature by, as the force and chip sd columns do for theirs
-//! (`cutcal_diagnose::noise`). Without it the report says the 10 % default was assumed.
+//! (`cutcal_diagnose::noise`). Without it the report says the 10 % default was assumed, and a
+//! verdict that claims nothing says how to state a better one.
 
 use super::json as report;
 
@@ -36,8 +37,15 @@ fn a_stated_interface_temperature_sd_is_the_noise_the_diagnosis_uses() {
     assert!((pct - expected_pct).abs() < 1e-9, "{pct} against {expected_pct}");
     let source = with["noise_source"][3].as_str().unwrap();
     assert!(source.starts_with("per-row sd columns"), "{source}");
+    // The fixture's verdict claims nothing either way; only with the scatter assumed does the
+    // explanation ask for it.
+    assert_ne!(with["verdict"], "missing_physics", "{with}");
+    assert!(!with["explanation"].as_str().unwrap().contains("t_int_sd_c"), "{with}");
 
     let without = run(RECORDINGS);
     let source = without["noise_source"][3].as_str().unwrap();
     assert!(!source.starts_with("per-row") && source.contains("10 %"), "{source}");
+    assert_ne!(without["verdict"], "missing_physics", "{without}");
+    let explanation = without["explanation"].as_str().unwrap();
+    assert!(explanation.contains("assumed 10 % scatter") && explanation.contains("t_int_sd_c"), "{explanation}");
 }
