@@ -57,77 +57,90 @@ pub(crate) struct ColumnLimit {
     pub(crate) absorbed: f64,
 }
 
-/// The limit per strength column of `s` (sensitivities, noise units per typical move), with the
-/// baseline's columns `j` (noise units per unit of each parameter) free under their Gaussian priors
-/// of precision `precision` (0: none). The information left in a column after profiling them out is
-/// `|s|^2 - s^T J (J^T J + Lambda)^+ J^T s` (the Schur complement of the joint information, as in
-/// the refit's Wald covariance); the limit is `sqrt(max(s2, 1) / left)`, infinite where the
-/// baseline absorbs the column whole.
-pub(crate) fn unit_limits(
-    j: &DMatrix<f64>,
-    precision: &[f64],
-    s: &DMatrix<f64>,
-    s2: f64,
-    id: MechanismId,
-) -> Vec<ColumnLimit> {
-    column_limits(j, precision, s, s2, s.ncols().saturating_sub(shape_params(id)))
+/// The baseline's side of the profiling: its Jacobian `J` (noise units per unit of each free
+/// parameter) and `(J^T J + Lambda)^+`, with `Lambda` the parameters' prior precisions (0: none).
+/// It depends on the baseline alone, so one serves every mechanism and gate a screen scores.
+pub(crate) struct BaselineInfo {
+    j: DMatrix<f64>,
+    /// `None` when there is no free column (the baseline then takes nothing).
+    inverse: Option<DMatrix<f64>>,
+    /// The Jacobian failed (no columns for the parameters free to move: `precision` and `j`
+    /// disagree in length).
+    failed: bool,
 }
 
-/// [`unit_limits`] of the first `strengths` columns of `s`.
-fn column_limits(j: &DMatrix<f64>, precision: &[f64], s: &DMatrix<f64>, s2: f64, strengths: usize) -> Vec<ColumnLimit> {
-    // A baseline Jacobian that failed (no columns for the parameters free to move) leaves no limit:
-    // one without the baseline's absorption would understate what could hide.
-    let Some(taken) = taken_by_baseline(j, precision, s) else { return Vec::new() };
-    (0..strengths.min(s.ncols()))
-        .map(|c| {
-            let total = s.column(c).norm_squared();
-            let left = (total - taken[c]).max(0.0);
-            let absorbed = if total > 0.0 { (taken[c] / total).clamp(0.0, 1.0) } else { 1.0 };
-            let unit = if left > 1e-12 * total.max(1e-300) && left.is_finite() {
-                (s2.max(1.0) / left).sqrt()
-            } else {
-                f64::INFINITY
-            };
-            ColumnLimit { unit, absorbed }
-        })
-        .collect()
-}
+impl BaselineInfo {
+    /// The information of the baseline columns `j` under prior precisions `precision`.
+    pub(crate) fn new(j: DMatrix<f64>, precision: &[f64]) -> Self {
+        let failed = precision.len() != j.ncols();
+        let inverse = (!failed && j.ncols() > 0).then(|| {
+            let mut info = j.transpose() * &j;
+            for (i, p) in precision.iter().enumerate() {
+                info[(i, i)] += p;
+            }
+            info.pseudo_inverse(1e-12).ok()
+        });
+        Self { j, inverse: inverse.flatten(), failed }
+    }
 
-/// The share of the signature `s` (all its columns) that the baseline, with the columns `j` and
-/// the prior precisions `precision`, can produce: `sum_c s_c^T J (J^T J + Lambda)^+ J^T s_c` over
-/// `sum_c |s_c|^2`, in [0, 1]. A Jacobian that failed takes nothing (0), as the screen's
-/// unprojected score test then assumes.
-pub(crate) fn absorbed_share(j: &DMatrix<f64>, precision: &[f64], s: &DMatrix<f64>) -> f64 {
-    let total = s.norm_squared();
-    match taken_by_baseline(j, precision, s) {
-        Some(taken) if total > 0.0 => (taken.iter().sum::<f64>() / total).clamp(0.0, 1.0),
-        Some(_) => 1.0,
-        None => 0.0,
-    }
-}
-
-/// Per column of `s`, the part of `|s_c|^2` the baseline takes under its priors,
-/// `s_c^T J (J^T J + Lambda)^+ J^T s_c`; `None` when the Jacobian failed (`precision` and `j` then
-/// disagree in length).
-fn taken_by_baseline(j: &DMatrix<f64>, precision: &[f64], s: &DMatrix<f64>) -> Option<Vec<f64>> {
-    if precision.len() != j.ncols() {
-        return None;
-    }
-    let mut info = j.transpose() * j;
-    for (i, p) in precision.iter().enumerate().take(info.nrows()) {
-        info[(i, i)] += p;
-    }
-    let inverse = if j.ncols() == 0 { None } else { info.pseudo_inverse(1e-12).ok() };
-    Some(
-        (0..s.ncols())
-            .map(|c| {
-                inverse.as_ref().map_or(0.0, |inv| {
-                    let g = j.transpose() * s.column(c);
-                    (g.transpose() * inv * &g)[(0, 0)]
+    /// Per column of `s`, the part of `|s_c|^2` the baseline takes under its priors,
+    /// `s_c^T J (J^T J + Lambda)^+ J^T s_c`; `None` when the Jacobian failed.
+    fn taken(&self, s: &DMatrix<f64>) -> Option<Vec<f64>> {
+        if self.failed {
+            return None;
+        }
+        Some(
+            (0..s.ncols())
+                .map(|c| {
+                    self.inverse.as_ref().map_or(0.0, |inv| {
+                        let g = self.j.transpose() * s.column(c);
+                        (g.transpose() * inv * &g)[(0, 0)]
+                    })
                 })
+                .collect(),
+        )
+    }
+
+    /// The limit per strength column of `s` (sensitivities, noise units per typical move) of
+    /// mechanism `id`, with the baseline profiled out under its priors. The information left in a
+    /// column is `|s|^2 - s^T J (J^T J + Lambda)^+ J^T s` (the Schur complement of the joint
+    /// information, as in the refit's Wald covariance); the limit is `sqrt(max(s2, 1) / left)`,
+    /// infinite where the baseline absorbs the column whole.
+    pub(crate) fn unit_limits(&self, s: &DMatrix<f64>, s2: f64, id: MechanismId) -> Vec<ColumnLimit> {
+        self.column_limits(s, s2, s.ncols().saturating_sub(shape_params(id)))
+    }
+
+    /// [`BaselineInfo::unit_limits`] of the first `strengths` columns of `s`.
+    fn column_limits(&self, s: &DMatrix<f64>, s2: f64, strengths: usize) -> Vec<ColumnLimit> {
+        // A baseline Jacobian that failed leaves no limit: one without the baseline's absorption
+        // would understate what could hide.
+        let Some(taken) = self.taken(s) else { return Vec::new() };
+        (0..strengths.min(s.ncols()))
+            .map(|c| {
+                let total = s.column(c).norm_squared();
+                let left = (total - taken[c]).max(0.0);
+                let absorbed = if total > 0.0 { (taken[c] / total).clamp(0.0, 1.0) } else { 1.0 };
+                let unit = if left > 1e-12 * total.max(1e-300) && left.is_finite() {
+                    (s2.max(1.0) / left).sqrt()
+                } else {
+                    f64::INFINITY
+                };
+                ColumnLimit { unit, absorbed }
             })
-            .collect(),
-    )
+            .collect()
+    }
+
+    /// The share of the signature `s` (all its columns) that the baseline can produce under its
+    /// priors: `sum_c s_c^T J (J^T J + Lambda)^+ J^T s_c` over `sum_c |s_c|^2`, in [0, 1]. A
+    /// Jacobian that failed takes nothing (0), as the screen's unprojected score test then assumes.
+    pub(crate) fn absorbed_share(&self, s: &DMatrix<f64>) -> f64 {
+        let total = s.norm_squared();
+        match self.taken(s) {
+            Some(taken) if total > 0.0 => (taken.iter().sum::<f64>() / total).clamp(0.0, 1.0),
+            Some(_) => 1.0,
+            None => 0.0,
+        }
+    }
 }
 
 /// The candidate's detection limits in its parameters' units, at level `alpha`.
@@ -239,7 +252,8 @@ fn first_limits(
     let rp = fit::residuals(obs, &fit::predict(pr.sim, pr.tests, &c.spec, &c.spec.ctx, &xp).ok()?, &noise);
     let s = DMatrix::from_iterator(obs.len(), 1, r0.iter().zip(&rp).map(|(a, b)| (b - a) / 0.1));
     let (j, prec) = jp;
-    let unit = |j: DMatrix<f64>, s: DMatrix<f64>| column_limits(&j, prec, &s, 1.0, 1).first().map(|l| l.unit);
+    let unit =
+        |j: DMatrix<f64>, s: DMatrix<f64>| BaselineInfo::new(j, prec).column_limits(&s, 1.0, 1).first().map(|l| l.unit);
     let now = unit(j.rows(0, n).into_owned(), s.rows(0, n).into_owned())?;
     let then = unit(j.clone(), s)?;
     (now.is_finite() && then.is_finite()).then_some((now, then))
@@ -359,12 +373,12 @@ mod tests {
             let j = DMatrix::from_column_slice(7, 3, &vals[..21]);
             let s = DMatrix::from_column_slice(7, 2, &vals[21..35]);
             proptest::prop_assume!(s.norm_squared() > 1e-6);
-            let free = absorbed_share(&j, &[0.0; 3], &s);
+            let free = BaselineInfo::new(j.clone(), &[0.0; 3]).absorbed_share(&s);
             let projected = 1.0 - fit::project_out(&j, &s).norm_squared() / s.norm_squared();
             proptest::prop_assert!((free - projected).abs() < 1e-8, "{free} vs {projected}");
-            let tied = absorbed_share(&j, &prec, &s);
+            let tied = BaselineInfo::new(j.clone(), &prec).absorbed_share(&s);
             let tighter: Vec<f64> = prec.iter().map(|p| 2.0 * p + 0.1).collect();
-            let tightest = absorbed_share(&j, &tighter, &s);
+            let tightest = BaselineInfo::new(j.clone(), &tighter).absorbed_share(&s);
             proptest::prop_assert!((0.0..=1.0).contains(&tied) && (0.0..=1.0).contains(&tightest));
             proptest::prop_assert!(tied <= free + 1e-9 && tightest <= tied + 1e-9, "{free} {tied} {tightest}");
         }
@@ -392,18 +406,18 @@ mod tests {
         let s = DMatrix::from_column_slice(3, 2, &[2.0, 0.0, 0.0, 3.0, 4.0, 0.0]);
         // No prior: the baseline takes s1 whole and the 3 of s2; 16 is left, the limit 1/4 (s2 below
         // the stated noise counts as 1).
-        let free = unit_limits(&j, &[0.0], &s, 0.25, MechanismId::HeatPartition);
+        let free = BaselineInfo::new(j.clone(), &[0.0]).unit_limits(&s, 0.25, MechanismId::HeatPartition);
         assert!(free[0].unit.is_infinite() && (free[0].absorbed - 1.0).abs() < 1e-12);
         assert!((free[1].unit - 0.25).abs() < 1e-12 && (free[1].absorbed - 9.0 / 25.0).abs() < 1e-12);
         // A prior of precision 1: the baseline takes g^2 / (1 + 1) of each, g = j . s: 4 / 2 = 2 of
         // s1's 4 (limit 1 / sqrt(2)), 9 / 2 of s2's 25 (limit 1 / sqrt(20.5)).
-        let tied = unit_limits(&j, &[1.0], &s, 1.0, MechanismId::HeatPartition);
+        let tied = BaselineInfo::new(j.clone(), &[1.0]).unit_limits(&s, 1.0, MechanismId::HeatPartition);
         assert!((tied[0].unit - 0.5f64.sqrt()).abs() < 1e-12 && (tied[0].absorbed - 0.5).abs() < 1e-12);
         assert!((tied[1].unit - 1.0 / 20.5f64.sqrt()).abs() < 1e-12);
         // The signature's share the baseline produces, over both columns: without a prior 4 + 9 of
         // 29; with the prior 2 + 4.5 of 29; with a failed Jacobian (no columns) nothing.
-        assert!((absorbed_share(&j, &[0.0], &s) - 13.0 / 29.0).abs() < 1e-12);
-        assert!((absorbed_share(&j, &[1.0], &s) - 6.5 / 29.0).abs() < 1e-12);
-        assert_eq!(absorbed_share(&DMatrix::zeros(3, 0), &[1.0], &s), 0.0);
+        assert!((BaselineInfo::new(j.clone(), &[0.0]).absorbed_share(&s) - 13.0 / 29.0).abs() < 1e-12);
+        assert!((BaselineInfo::new(j.clone(), &[1.0]).absorbed_share(&s) - 6.5 / 29.0).abs() < 1e-12);
+        assert_eq!(BaselineInfo::new(DMatrix::zeros(3, 0), &[1.0]).absorbed_share(&s), 0.0);
     }
 }

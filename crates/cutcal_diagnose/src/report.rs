@@ -85,7 +85,7 @@ pub struct MechanismResult {
     /// Share of the baseline misfit the mechanism removes in-sample.
     pub explained_fraction: f64,
     /// Share of the mechanism's signature the baseline parameters can produce within their stated
-    /// priors (linearised at the screen's probe; `crate::detect::absorbed_share`): near 1, the
+    /// priors (linearised at the screen's probe; `crate::detect::BaselineInfo::absorbed_share`): near 1, the
     /// nuisance alone could account for this mechanism's effect.
     pub absorption: f64,
     /// Score-test p-value from the screen; `None` when there are too few numbers for the test.

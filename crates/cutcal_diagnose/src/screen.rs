@@ -25,7 +25,7 @@ struct Screened {
     p: f64,
     absorption: f64,
     sens: Vec<f64>,
-    /// Detection limit per strength column (`crate::detect::unit_limits`).
+    /// Detection limit per strength column (`crate::detect::BaselineInfo::unit_limits`).
     unit_limits: Vec<crate::detect::ColumnLimit>,
     /// The built-up edge's alternative gates (their contexts, best score first, from
     /// `gate_alternatives`): the refit also tries them (`other_gates`).
@@ -51,7 +51,8 @@ pub(crate) fn screen_and_refit(
     // A Jacobian probe outside the model's solvable region leaves the screen unprojected.
     let j = data_jacobian(pr.sim, pr.tests, &pr.obs, current_spec, &noise, &current.x, &cols, &steps)
         .unwrap_or_else(|_| DMatrix::zeros(n, 0));
-    let precision = crate::detect::precision(pr.sim.baseline_params(), &cols);
+    let baseline =
+        crate::detect::BaselineInfo::new(j.clone(), &crate::detect::precision(pr.sim.baseline_params(), &cols));
     let e = DVector::from_vec(current.resid.clone());
     let dof = n.saturating_sub(current.k);
     let s2 = if dof > 0 { (current.rss / dof as f64).max(1e-12) } else { 1.0 };
@@ -149,8 +150,8 @@ pub(crate) fn screen_and_refit(
             }
             if best.as_ref().is_none_or(|b| u > b.u) {
                 let sens = s.column(0).iter().copied().collect();
-                let unit_limits = crate::detect::unit_limits(&j, &precision, &s, s2, m);
-                let absorption = crate::detect::absorbed_share(&j, &precision, &s);
+                let unit_limits = baseline.unit_limits(&s, s2, m);
+                let absorption = baseline.absorbed_share(&s);
                 best = Some(Screened { id: m, spec, u, p, absorption, sens, unit_limits, other_gates: Vec::new() });
             }
         }
