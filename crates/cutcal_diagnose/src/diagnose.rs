@@ -401,7 +401,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     );
     let mut explanation =
         explain(verdict, &mismatch, &accepted, &ambiguous, &first_round, &summary, conditions, &global, rec, alpha_k);
-    notes.extend(crate::separate::interface_noise_note(verdict, rec, &noise_model.source[3], noise[3]));
+    notes.extend(crate::separate::interface_noise_note(verdict, rec, noise_model.assumed[3], noise[3]));
     for note in &notes {
         explanation.push(' ');
         explanation.push_str(note);

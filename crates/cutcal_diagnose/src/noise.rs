@@ -39,6 +39,8 @@ pub struct NoiseModel {
     pub sd: [f64; NOUT],
     /// Source of each, e.g. `repeated conditions (df = 4)`.
     pub source: [String; NOUT],
+    /// Whether each is the stated default (the data said nothing about it).
+    pub assumed: [bool; NOUT],
 }
 
 /// The noise of `tests` grouped by condition in `groups`, with `default` where the data are silent.
@@ -60,6 +62,7 @@ pub fn from_data(tests: &[CuttingTest], groups: &[Vec<usize>], default: [f64; NO
             .filter(|v| *v > 0.0)
     };
     let mut sd = default;
+    let mut assumed = [true; NOUT];
     let mut source: [String; NOUT] = std::array::from_fn(|j| format!("assumed default {:.0} %", 100.0 * default[j]));
     for j in 0..NOUT {
         let measured: Vec<&CuttingTest> = tests.iter().filter(|t| value(t, j).is_some()).collect();
@@ -69,6 +72,7 @@ pub fn from_data(tests: &[CuttingTest], groups: &[Vec<usize>], default: [f64; NO
             rel.sort_by(f64::total_cmp);
             sd[j] = rel[rel.len() / 2].max(FLOOR);
             source[j] = format!("per-row sd columns ({} rows, median)", rel.len());
+            assumed[j] = false;
             continue;
         }
         let (mut ss, mut df) = (0.0, 0usize);
@@ -84,6 +88,7 @@ pub fn from_data(tests: &[CuttingTest], groups: &[Vec<usize>], default: [f64; NO
             let d = df as f64;
             let pooled = (PRIOR_DF * default[j] * default[j] + ss) / (PRIOR_DF + d);
             sd[j] = pooled.sqrt().max(FLOOR);
+            assumed[j] = false;
             source[j] = format!(
                 "repeated conditions (df = {df}, sd {:.1} %) with the default {:.0} % as a prior worth {PRIOR_DF} df",
                 100.0 * (ss / d).sqrt(),
@@ -91,7 +96,7 @@ pub fn from_data(tests: &[CuttingTest], groups: &[Vec<usize>], default: [f64; NO
             );
         }
     }
-    NoiseModel { sd, source }
+    NoiseModel { sd, source, assumed }
 }
 
 #[cfg(test)]

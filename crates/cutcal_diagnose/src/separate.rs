@@ -90,17 +90,16 @@ pub(crate) fn own_test(m: MechanismId, rec: Recorded) -> String {
 }
 
 /// When no mechanism was claimed on recordings that hold the interface temperature but weighed it
-/// at the assumed default scatter (`noise_source` "assumed default ..."; `crate::noise`): how to
+/// at the assumed default scatter `sd` (`assumed`: `crate::noise::NoiseModel::assumed`): how to
 /// weigh it by what the measurement is worth. A temperature known to 3-5 % instead of 10 % counts
 /// (10/4)^2 = 6 times as much in the fit, and the temperature is what tells a heat partition or a
 /// softening from a flow-stress level.
 pub(crate) fn interface_noise_note(
     verdict: crate::report::Verdict,
     rec: Recorded,
-    source: &str,
+    assumed: bool,
     sd: f64,
 ) -> Option<String> {
-    let assumed = source.starts_with("assumed default");
     (verdict != crate::report::Verdict::MissingPhysics && rec.interface_temperature && assumed).then(|| {
         format!(
             "The interface temperature was weighed at an assumed {:.0} % scatter of its rise (no t_int_sd_c column, \
@@ -293,11 +292,11 @@ mod tests {
         // temperature recorded at every test, and with its scatter assumed.
         use crate::report::Verdict as V;
         let with_t = Recorded { interface_temperature: true, ..Recorded::default() };
-        let note = interface_noise_note(V::Ambiguous, with_t, "assumed default 10 %", 0.1).unwrap();
+        let note = interface_noise_note(V::Ambiguous, with_t, true, 0.1).unwrap();
         assert!(note.contains("assumed 10 %") && note.contains("t_int_sd_c"), "{note}");
-        assert!(interface_noise_note(V::MissingPhysics, with_t, "assumed default 10 %", 0.1).is_none());
-        assert!(interface_noise_note(V::None, Recorded::default(), "assumed default 10 %", 0.1).is_none());
-        assert!(interface_noise_note(V::None, with_t, "per-row sd columns (5 rows, median)", 0.04).is_none());
+        assert!(interface_noise_note(V::MissingPhysics, with_t, true, 0.1).is_none());
+        assert!(interface_noise_note(V::None, Recorded::default(), true, 0.1).is_none());
+        assert!(interface_noise_note(V::None, with_t, false, 0.04).is_none());
     }
 
     /// A first-round candidate of mechanism `id` at `daicc`, significant with a usable interval.
