@@ -7,6 +7,7 @@ mod bootstrap;
 mod card_law;
 mod catalogue;
 mod determinism;
+mod far;
 mod hidden;
 mod identify;
 mod noise;

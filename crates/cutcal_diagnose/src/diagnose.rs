@@ -374,7 +374,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     };
     let names: Vec<String> = sim.baseline_params().iter().map(|p| p.name.clone()).collect();
     let named = |x: &[f64]| names.iter().zip(x).map(|(n, v)| NamedValue { name: n.clone(), value: *v }).collect();
-    let residuals = pr
+    let residuals: Vec<ResidualRow> = pr
         .obs
         .iter()
         .enumerate()
@@ -402,6 +402,8 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
     let mut explanation =
         explain(verdict, &mismatch, &accepted, &ambiguous, &first_round, &summary, conditions, &global, rec, alpha_k);
     notes.extend(crate::separate::interface_noise_note(verdict, rec, noise_model.assumed[3], noise[3]));
+    let far_conditions = crate::far::far_conditions(&residuals, &noise);
+    notes.extend(crate::far::far_sentence(&far_conditions));
     for note in &notes {
         explanation.push(' ');
         explanation.push_str(note);
@@ -431,6 +433,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         baseline_params_after: named(&current.x),
         not_testable,
         fit_notes,
+        far_conditions,
         residuals,
         noise_source: noise_model.source.to_vec(),
         calibration: calibration_text,

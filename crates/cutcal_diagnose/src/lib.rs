@@ -10,6 +10,7 @@
 pub mod classes;
 mod context;
 pub mod error;
+pub mod far;
 pub mod fit;
 mod ftest;
 mod heldout;

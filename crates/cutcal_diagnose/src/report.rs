@@ -253,6 +253,9 @@ pub struct Report {
     /// Fits that did not converge cleanly (iteration cap, damped rerun, nothing fitted), named.
     #[serde(default)]
     pub fit_notes: Vec<String>,
+    /// Conditions far from the rest after the final model (`crate::far`; a note, not a decision).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub far_conditions: Vec<crate::far::FarCondition>,
     /// Residuals before and after (for plots).
     pub residuals: Vec<ResidualRow>,
     /// Where the noise level of Fc, Ft, t2 came from (per-row sd, repeats, or the default).
