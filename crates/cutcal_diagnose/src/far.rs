@@ -22,7 +22,9 @@ use crate::fit::{NOUT, OUTPUTS};
 use crate::report::ResidualRow;
 
 /// Robust z above which a condition is far from the rest: a normal value beyond 5 sd has a chance
-/// of 5.7e-7, so a design of 30 conditions and 4 outputs flags noise about once in 15 000 reports.
+/// of 5.7e-7, so with a known scale a design of 30 conditions and 4 outputs would flag noise about
+/// once in 15 000 reports; a MAD from few conditions scatters, which makes it more often (2 of 232
+/// nulls of seed 21212 had a far condition, one of them a branch switch).
 pub const ROBUST_Z: f64 = 5.0;
 
 /// Fewest conditions with an output for its median and spread to mean anything.
