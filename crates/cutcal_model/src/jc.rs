@@ -289,11 +289,16 @@ mod tests {
     }
 
     proptest! {
-        // Every analytic derivative equals a central difference at random admissible points.
+        // Every analytic derivative equals a central difference at random admissible points. The
+        // clamped rate term has a kink at eps0 (ln of the rate 0), where no derivative exists: a
+        // central difference there straddles it, and just above it the C-gradient (proportional
+        // to ln of the rate) falls below the difference's rounding (about 1e-16 s / step, 0.2 Pa
+        // at the hottest point), so the rate is drawn from ln 0.05 upwards. At 0.0 the test failed
+        // in one CI run in many (forty-second session; proptest's minimal case had ln rate 0).
         #[test]
         fn derivatives_match_central_differences(
             a in 100e6..1000e6f64, b in 10e6..1000e6f64, n in 0.05..0.7f64, c in 0.001..0.2f64,
-            m in 0.7..1.3f64, eps in 0.05..3.0f64, lrate in 0.0..12.0f64, t in 40.0..1400.0f64,
+            m in 0.7..1.3f64, eps in 0.05..3.0f64, lrate in 0.05..12.0f64, t in 40.0..1400.0f64,
         ) {
             let jc = JcParams::new(a, b, n, c, m, 1.0, 1460.0, 20.0).unwrap();
             let rate = lrate.exp();
