@@ -59,19 +59,36 @@ proptest! {
 
     // The interface heat share s scales the maximum interface rise dT_M as psi does
     // (T_int = T_w + dT_SZ + psi s dT_M, Oxley 1989 Sec 4.3 with the tool's share of the frictional
-    // heat, Loewen & Shaw 1954): psi 0.9 with share s is the model with psi 0.9 s and share 1, and a
-    // share below 1 gives a cooler interface than Oxley's all-to-the-chip.
+    // heat, Loewen & Shaw 1954): psi 0.9 with share s is the model with psi 0.9 s and share 1, at
+    // every share, and where one has no solution neither has the other. A share of 0.75 or more
+    // gives a cooler interface than Oxley's all-to-the-chip. Below that the claim does not hold
+    // everywhere, and the test does not make it: on slow, thin cuts with a positive rake the cooler
+    // chip side raises k_chip, Oxley's tau_int = k_chip lowers phi, and the extra shear heats the
+    // interface again (100 m/min, 0.08 mm, 8 deg, s = 0.5: phi 3.8 deg, T_int 932 against 659 degC;
+    // at 9.3 deg and s = 0.5 no solution is left). Both were found by a 1000-seed audit of this
+    // test. On a grid of this test's range (speeds 100-400 m/min, 0.08-0.3 mm, rakes -5 to 10 deg;
+    // 150 conditions, the share in steps of 0.005) the largest share with an interface no cooler,
+    // or no solution, is 0.645, at 100 m/min, 0.08 mm and 10 deg
+    // (`cargo run -p cutcal_model --release --example interface_share_scan`).
     #[test]
     fn interface_heat_share_acts_as_psi(v in 100.0..400.0f64, t1 in 0.08..0.3f64, rake in -5.0..10.0f64, s in 0.5..0.95f64) {
         let cond = CuttingConditions::new(v / 60.0, t1 * 1e-3, 1e-3, rake.to_radians(), 25.0).unwrap();
-        let shared = Physics { interface_heat_share: s, ..Physics::baseline() };
-        let a = oxley::predict(&aisi1045(), &jc_aisi1045(), &cond, &OxleyOptions::wide(), &shared).unwrap();
+        let with_share = |share: f64| {
+            let shared = Physics { interface_heat_share: share, ..Physics::baseline() };
+            oxley::predict(&aisi1045(), &jc_aisi1045(), &cond, &OxleyOptions::wide(), &shared)
+        };
         let psi = OxleyOptions::wide().with_eta_psi(0.9, 0.9 * s).unwrap();
-        let b = oxley::predict(&aisi1045(), &jc_aisi1045(), &cond, &psi, &Physics::baseline()).unwrap();
-        prop_assert!((a.cutting_force_n_per_m / b.cutting_force_n_per_m - 1.0).abs() < 1e-6);
-        prop_assert!((a.temperature_int_c - b.temperature_int_c).abs() < 1e-3);
+        match (with_share(s), oxley::predict(&aisi1045(), &jc_aisi1045(), &cond, &psi, &Physics::baseline())) {
+            (Ok(a), Ok(b)) => {
+                prop_assert!((a.cutting_force_n_per_m / b.cutting_force_n_per_m - 1.0).abs() < 1e-6);
+                prop_assert!((a.temperature_int_c - b.temperature_int_c).abs() < 1e-3);
+            }
+            (Err(_), Err(_)) => {}
+            (a, b) => prop_assert!(false, "share {s} and psi {}: one solves, the other not ({a:?} / {b:?})", 0.9 * s),
+        }
+        let cooler = with_share(s.max(0.75)).unwrap();
         let full = predict(v, t1, rake);
-        prop_assert!(a.temperature_int_c < full.temperature_int_c, "{} !< {}", a.temperature_int_c, full.temperature_int_c);
+        prop_assert!(cooler.temperature_int_c < full.temperature_int_c, "{} !< {}", cooler.temperature_int_c, full.temperature_int_c);
     }
 }
 
