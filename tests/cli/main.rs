@@ -15,6 +15,7 @@ mod pipe;
 mod predict;
 mod real_cases;
 mod recordings;
+mod sharp_edge;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -29,6 +29,9 @@ pub struct Context {
     /// Trent & Wright 2000, Sec 5.3, is not ordered by the interface temperature when the feed
     /// varies).
     pub bue_by_speed: bool,
+    /// Whether the built-up edge's temperature gate is sharp (`mechanism::BUE_SHARP_WIDTH` in ln T
+    /// instead of `mechanism::BUE_WIDTH`), chosen by the screen with the gate (`bue_coordinates`).
+    pub bue_sharp: bool,
     /// The baseline's apparent tool-chip friction coefficient per test over its largest value, in
     /// (0, 1], when the simulator gives both forces at every test: `mu_app = F/N = tan(alpha +
     /// atan(Ft/Fc))` (Merchant's force circle), which in Oxley's closure is `k_chip / sigma_N`, the
@@ -101,6 +104,7 @@ impl Context {
             bue_floor: 0.0,
             bue_gate_c: None,
             bue_by_speed: false,
+            bue_sharp: false,
             friction_load: None,
             friction_coulomb: false,
             friction_v_ref_m_min,
@@ -142,6 +146,16 @@ impl Context {
         }
     }
 
+    /// The built-up edge's gate width in the log of its coordinate (`mechanism::bue_gate`).
+    #[must_use]
+    pub fn bue_width(&self) -> f64 {
+        if self.bue_sharp && self.bue_gated_by_temperature() {
+            crate::mechanism::BUE_SHARP_WIDTH
+        } else {
+            crate::mechanism::BUE_WIDTH
+        }
+    }
+
     /// Whether the built-up edge's gate coordinate is the interface temperature (else the speed).
     #[must_use]
     pub fn bue_gated_by_temperature(&self) -> bool {
@@ -157,6 +171,7 @@ impl Context {
             bue_floor: self.bue_floor,
             bue_gate_c: self.bue_gate_c.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             bue_by_speed: self.bue_by_speed,
+            bue_sharp: self.bue_sharp,
             friction_load: self.friction_load.as_ref().map(|w| indices.iter().map(|&i| w[i]).collect()),
             friction_coulomb: self.friction_coulomb,
             friction_v_ref_m_min: self.friction_v_ref_m_min,

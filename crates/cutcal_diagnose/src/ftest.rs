@@ -40,15 +40,16 @@ pub(crate) fn tested_df(id: MechanismId, added: usize) -> usize {
 }
 
 /// Parameters of a mechanism chosen on a grid rather than fitted (the built-up-edge onset, its
-/// floor when the gate is a band, `Context::bue_floor`, and the speed when it was chosen as the
+/// floor when the gate is a band, `Context::bue_floor`, the speed when it was chosen as the
 /// gate's coordinate over the interface temperature, `Context::bue_by_speed`: the temperature is
-/// the edge's physical gate, the speed the alternative that has to pay): they count in the AICc as
+/// the edge's physical gate, the speed the alternative that has to pay; and the sharp gate's width
+/// when it was chosen over the default, `Context::bue_sharp`): they count in the AICc as
 /// any fitted parameter does (Burnham & Anderson 2002, Sec 2.2: K is every estimated parameter), so
 /// that a mechanism with a grid-chosen gate has no advantage over one whose second parameter is
 /// fitted.
 pub(crate) fn grid_chosen(id: MechanismId, ctx: &Context) -> usize {
     if id == MechanismId::BuiltUpEdge {
-        1 + usize::from(ctx.bue_floor > 0.0) + usize::from(ctx.bue_by_speed)
+        1 + usize::from(ctx.bue_floor > 0.0) + usize::from(ctx.bue_by_speed) + usize::from(ctx.bue_sharp)
     } else {
         0
     }

@@ -19,7 +19,8 @@ use crate::simulator::{Prediction, Simulator};
 mod bue;
 mod friction;
 mod library;
-pub use bue::{bue_coordinates, bue_gate, bue_gates, bue_indicator, bue_onsets};
+pub use bue::{bue_coordinates, bue_gate, bue_gates, bue_indicator, bue_onsets, BUE_SHARP_WIDTH, BUE_WIDTH};
+pub(crate) use bue::{gate_alternatives, gate_class, GATE_CLASSES};
 pub use friction::{friction_factor, hybrid_friction_factor};
 pub use library::info;
 
@@ -165,8 +166,8 @@ pub fn set_hooks(
                 h.friction_factor *= nix_gao(phi[0], t).powf(phi[1] - 1.0);
             }
             MechanismId::BuiltUpEdge => {
-                h.rake_shift_rad +=
-                    phi[0].to_radians() * bue_gate(ctx.bue_coordinate(tests, i), ctx.bue_onset, ctx.bue_floor)
+                h.rake_shift_rad += phi[0].to_radians()
+                    * bue_gate(ctx.bue_coordinate(tests, i), ctx.bue_onset, ctx.bue_floor, ctx.bue_width())
             }
             _ => {}
         }

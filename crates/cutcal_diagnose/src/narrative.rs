@@ -32,19 +32,22 @@ pub(crate) fn result_of(
     if c.id == MechanismId::BuiltUpEdge {
         let v = c.spec.ctx.bue_onset;
         let (name, unit, note) = if c.spec.ctx.bue_gated_by_temperature() {
+            let sharp = if c.spec.ctx.bue_sharp { ", with the sharp gate (width 0.03 in ln T)" } else { "" };
             (
                 "t_onset",
                 "degC",
-                "interface temperature below which the edge forms, chosen on a grid of the tests' values",
+                format!(
+                    "interface temperature below which the edge forms, chosen on a grid of the tests' values{sharp}"
+                ),
             )
         } else {
-            ("v_onset", "m/min", "chosen on a grid of the tested speeds, not fitted")
+            ("v_onset", "m/min", "chosen on a grid of the tested speeds, not fitted".to_string())
         };
         // A rising gate has no onset in the design (`mechanism::bue_gates`): its floor alone.
         if v.is_finite() {
             params.insert(
                 name.into(),
-                ParamValue { value: v, unit: unit.into(), ci_low: None, ci_high: None, ci_note: note.into() },
+                ParamValue { value: v, unit: unit.into(), ci_low: None, ci_high: None, ci_note: note },
             );
         }
         let floor = c.spec.ctx.bue_floor;

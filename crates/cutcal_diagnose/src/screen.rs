@@ -3,7 +3,7 @@
 //! absorb), which order them, then a joint refit of every one with its F-test (chi-bar-square mixture for
 //! parameters whose off value sits on a bound, Self & Liang 1987; `crate::ftest`) and 95 % Wald
 //! intervals. Friction is refitted in both forms of its law and the better kept (`coulomb_form`);
-//! the built-up edge also at the gates of `gate_alternatives` (`other_gates`).
+//! the built-up edge also at the gates of `mechanism::gate_alternatives` (`other_gates`).
 
 use nalgebra::{DMatrix, DVector};
 
@@ -11,7 +11,9 @@ use crate::context::Context;
 use crate::error::DiagnoseError;
 use crate::fit::{self, data_jacobian, project_out, Fit, Spec};
 pub(crate) use crate::ftest::{boundary_params, cosine, f_test, grid_chosen, shape_params, tested_df};
-use crate::mechanism::{bue_coordinates, bue_gates, info, softening_conflict, MechanismId};
+use crate::mechanism::{
+    bue_coordinates, bue_gates, gate_alternatives, gate_class, info, softening_conflict, MechanismId, GATE_CLASSES,
+};
 use crate::problem::{Candidate, Problem};
 use crate::report::*;
 use crate::stats;
@@ -79,7 +81,7 @@ pub(crate) fn screen_and_refit(
         // off-value residuals are computed once for all its gates.
         let mut r0_gate_free: Option<Vec<f64>> = None;
         // The best-scoring gate of each class (coordinate x one-sided or band).
-        let mut best_of_class: [Option<(f64, Context)>; 4] = Default::default();
+        let mut best_of_class: [Option<(f64, Context)>; GATE_CLASSES] = Default::default();
         for ctx in gates {
             let mut mechs = current_spec.mechanisms.clone();
             mechs.push(m);
@@ -355,33 +357,6 @@ fn coulomb_form(pr: &Problem<'_>, s: &mut Screened, x0: &[f64], current: &Fit, f
     }
 }
 
-/// The built-up edge's gate class: its coordinate (temperature or speed) and whether it is a band.
-fn gate_class(ctx: &Context) -> usize {
-    2 * usize::from(ctx.bue_by_speed) + usize::from(ctx.bue_floor > 0.0)
-}
-
-/// The gates the built-up edge's refit tries beside the screen's choice (class `chosen`), best
-/// score first, from the best-scoring gate of each class (`best`, indexed by [`gate_class`]): on
-/// each coordinate its best gate, and its best one-sided gate when that best is a band. A band is
-/// not tried where the coordinate's one-sided gate scored higher: refitted as well, it became a
-/// near-equivalent rival of friction or a wrong claim on heat-partition and size-effect datasets
-/// (families b and d, seeds 12121 and 13131, thirty-fifth session).
-fn gate_alternatives(best: [Option<(f64, Context)>; 4], chosen: usize) -> Vec<Context> {
-    let score = |c: &Option<(f64, Context)>| c.as_ref().map_or(f64::NEG_INFINITY, |(u, _)| *u);
-    let mut out: Vec<(f64, Context)> = Vec::new();
-    for coord in 0..2 {
-        let (one_sided, band) = (&best[2 * coord], &best[2 * coord + 1]);
-        let keep_band = score(band) > score(one_sided);
-        for (k, c) in [(2 * coord, one_sided), (2 * coord + 1, band)] {
-            if k != chosen && (k % 2 == 0 || keep_band) {
-                out.extend(c.clone());
-            }
-        }
-    }
-    out.sort_by(|x, y| y.0.total_cmp(&x.0));
-    out.into_iter().map(|(_, c)| c).collect()
-}
-
 /// The built-up edge is refitted also at the gates of [`gate_alternatives`], and the fit with the
 /// lowest AICc is kept (the floor and the speed coordinate count as grid-chosen parameters,
 /// `grid_chosen`). The score is linearised at d_alpha = 0 and can prefer a gate whose refit
@@ -410,37 +385,4 @@ pub(crate) fn nested_point(x: &[f64], id: MechanismId) -> Vec<f64> {
     let mut out = x.to_vec();
     out.extend(info(id).params.iter().take(fit::fitted_len(id)).map(|p| p.off));
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use cutcal_model::CuttingTest;
-
-    /// A gate of class `class` ([`gate_class`]) with onset `onset`, and its score `u`.
-    fn gate(class: usize, onset: f64, u: f64) -> Option<(f64, Context)> {
-        let t = CuttingTest::new("t", 2.0, 0.1e-3, 1e-3, 0.0).unwrap();
-        let mut c = Context::of(&[t]);
-        c.bue_by_speed = class >= 2;
-        c.bue_floor = if class % 2 == 1 { 0.5 * onset } else { 0.0 };
-        c.bue_onset = onset;
-        assert_eq!(gate_class(&c), class);
-        Some((u, c))
-    }
-
-    #[test]
-    fn the_refit_tries_each_coordinate_best_gate_and_its_one_sided_gate_after_a_band() {
-        let onsets = |v: Vec<Context>| v.iter().map(|c| c.bue_onset).collect::<Vec<_>>();
-        // The screen chose the temperature band (class 1, score 9): its one-sided gate (score 5)
-        // is tried, then the speed's best, a band (7), and the speed's one-sided gate (3), by score.
-        let best = [gate(0, 600.0, 5.0), gate(1, 650.0, 9.0), gate(2, 120.0, 3.0), gate(3, 140.0, 7.0)];
-        assert_eq!(onsets(gate_alternatives(best, 1)), vec![140.0, 600.0, 120.0]);
-        // The screen chose the one-sided temperature gate (9 over the band's 5): the band is not
-        // tried; the speed's one-sided gate (7) scored over its band (3), so only it is.
-        let best = [gate(0, 600.0, 9.0), gate(1, 650.0, 5.0), gate(2, 120.0, 7.0), gate(3, 140.0, 3.0)];
-        assert_eq!(onsets(gate_alternatives(best, 0)), vec![120.0]);
-        // Without the speed coordinate and a one-sided choice there is nothing else to try.
-        let best = [gate(0, 600.0, 9.0), gate(1, 650.0, 5.0), None, None];
-        assert!(gate_alternatives(best, 0).is_empty());
-    }
 }
