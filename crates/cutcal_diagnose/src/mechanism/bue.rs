@@ -374,4 +374,32 @@ mod tests {
         let best = [gate(0, 600.0, 9.0), gate(1, 650.0, 5.0), None, None, None, None];
         assert!(gate_alternatives(best, 0).is_empty());
     }
+
+    proptest::proptest! {
+        /// On any set of interface temperatures the sharp gates are one-sided, each at an onset the
+        /// default gate also offers, with at least two gate values below it; and both widths give
+        /// an indicator in [0, 1] that is 1/2 at the onset and never rises with the temperature.
+        #[test]
+        fn sharp_gates_are_one_sided_default_onsets_with_two_values_below(
+            temps in proptest::collection::vec(300.0f64..1200.0, 2..30),
+            probe in 300.0f64..1200.0,
+        ) {
+            let (tests, ctx) = gated(&temps);
+            let mut sharp = ctx.clone();
+            sharp.bue_sharp = true;
+            let onsets = bue_onsets(&tests, &ctx);
+            for (onset, floor) in bue_gates(&tests, &sharp) {
+                proptest::prop_assert_eq!(floor, 0.0);
+                proptest::prop_assert!(onsets.contains(&onset));
+                proptest::prop_assert!(temps.iter().filter(|t| **t < onset).count() >= 2);
+            }
+            for width in [BUE_WIDTH, BUE_SHARP_WIDTH] {
+                for &onset in &onsets {
+                    let (g, g_up) = (bue_indicator(probe, onset, width), bue_indicator(probe + 1.0, onset, width));
+                    proptest::prop_assert!((0.0..=1.0).contains(&g) && g_up <= g);
+                    proptest::prop_assert!((bue_indicator(onset, onset, width) - 0.5).abs() < 1e-12);
+                }
+            }
+        }
+    }
 }
