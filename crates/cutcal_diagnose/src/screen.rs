@@ -358,8 +358,8 @@ fn coulomb_form(pr: &Problem<'_>, s: &mut Screened, x0: &[f64], current: &Fit, f
 }
 
 /// The built-up edge is refitted also at the gates of [`gate_alternatives`], and the fit with the
-/// lowest AICc is kept (the floor and the speed coordinate count as grid-chosen parameters,
-/// `grid_chosen`). The score is linearised at d_alpha = 0 and can prefer a gate whose refit
+/// lowest AICc is kept (the floor, the speed coordinate and the sharp width count as grid-chosen
+/// parameters, `grid_chosen`). The score is linearised at d_alpha = 0 and can prefer a gate whose refit
 /// explains less: a narrow band over the one-sided gate (family c of the concealed benchmark, seed
 /// 13131), or a speed gate over the temperature gate of an edge that follows the interface
 /// temperature (families a, b and d, seed 9090, in the thirty-fifth session).
