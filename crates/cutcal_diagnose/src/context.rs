@@ -146,10 +146,17 @@ impl Context {
         }
     }
 
+    /// Whether the built-up edge's gate is the sharp temperature gate: `bue_sharp` on the interface
+    /// temperature (the speed gate is never sharpened).
+    #[must_use]
+    pub fn bue_sharp_gate(&self) -> bool {
+        self.bue_sharp && self.bue_gated_by_temperature()
+    }
+
     /// The built-up edge's gate width in the log of its coordinate (`mechanism::bue_gate`).
     #[must_use]
     pub fn bue_width(&self) -> f64 {
-        if self.bue_sharp && self.bue_gated_by_temperature() {
+        if self.bue_sharp_gate() {
             crate::mechanism::BUE_SHARP_WIDTH
         } else {
             crate::mechanism::BUE_WIDTH

@@ -49,7 +49,7 @@ pub(crate) fn tested_df(id: MechanismId, added: usize) -> usize {
 /// fitted.
 pub(crate) fn grid_chosen(id: MechanismId, ctx: &Context) -> usize {
     if id == MechanismId::BuiltUpEdge {
-        1 + usize::from(ctx.bue_floor > 0.0) + usize::from(ctx.bue_by_speed) + usize::from(ctx.bue_sharp)
+        1 + usize::from(ctx.bue_floor > 0.0) + usize::from(ctx.bue_by_speed) + usize::from(ctx.bue_sharp_gate())
     } else {
         0
     }

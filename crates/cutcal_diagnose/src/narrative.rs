@@ -32,7 +32,11 @@ pub(crate) fn result_of(
     if c.id == MechanismId::BuiltUpEdge {
         let v = c.spec.ctx.bue_onset;
         let (name, unit, note) = if c.spec.ctx.bue_gated_by_temperature() {
-            let sharp = if c.spec.ctx.bue_sharp { ", with the sharp gate (width 0.03 in ln T)" } else { "" };
+            let sharp = if c.spec.ctx.bue_sharp_gate() {
+                format!(", with the sharp gate (width {} in ln T)", crate::mechanism::BUE_SHARP_WIDTH)
+            } else {
+                String::new()
+            };
             (
                 "t_onset",
                 "degC",

@@ -74,14 +74,14 @@ pub fn bue_gates(tests: &[CuttingTest], ctx: &Context) -> Vec<(f64, f64)> {
     let v = gate_values(tests, ctx);
     let mut out = Vec::new();
     for onset in bue_onsets(tests, ctx) {
-        if ctx.bue_sharp {
-            if v.iter().filter(|x| **x < onset).count() >= 2 {
+        let below = v.iter().filter(|x| **x < onset).count();
+        if ctx.bue_sharp_gate() {
+            if below >= 2 {
                 out.push((onset, 0.0));
             }
             continue;
         }
         out.push((onset, 0.0));
-        let below = v.iter().filter(|x| **x < onset).count();
         let floors: Vec<f64> = (1..below.saturating_sub(2)).map(|j| (v[j] * v[j + 1]).sqrt()).collect();
         let picks = floors.len().min(3);
         for k in 0..picks {
@@ -89,7 +89,7 @@ pub fn bue_gates(tests: &[CuttingTest], ctx: &Context) -> Vec<(f64, f64)> {
             out.push((onset, floors[idx]));
         }
     }
-    if !ctx.bue_sharp {
+    if !ctx.bue_sharp_gate() {
         out.extend(rising_floors(&v).into_iter().map(|floor| (f64::INFINITY, floor)));
     }
     out
