@@ -39,8 +39,15 @@ fn args(name: &str) -> Vec<String> {
         ]
         .map(String::from)
         .to_vec();
+    } else if name.starts_with("simulation_") {
+        // A simulation goes through Mode A's diagnosis against recordings of the same five cuts.
+        return ["diagnose", "--recordings", "fixtures/diagnose/five_conditions_recordings.csv", "--simulation", &bad]
+            .map(String::from)
+            .to_vec();
     } else {
-        panic!("fixtures/bad/{name}: name it tests_*.csv, material_*.toml or jc_*.toml so the catalogue knows how to run it")
+        panic!(
+            "fixtures/bad/{name}: name it tests_*.csv, material_*.toml, jc_*.toml or simulation_*.csv so the catalogue knows how to run it"
+        )
     };
     ["identify", "--material", &material, "--tests", &tests, "--starts", "4"].map(String::from).to_vec()
 }

@@ -13,10 +13,9 @@ use cutcal_model::{JcParams, Material};
 
 use cutcal_io::jc_file::load_jc;
 use cutcal_io::material_file::{load_material, MaterialFile};
-use cutcal_io::simulation_csv::load_simulation;
+use cutcal_io::simulation_csv::{check_against_recordings, load_simulation};
 use cutcal_io::tests_csv::load_tests;
 
-use crate::bail;
 use crate::diagnose_mode_a::mode_a;
 use crate::error::{Context, Result};
 use crate::svg::{Plot, Series};
@@ -74,12 +73,8 @@ pub fn diagnose_files(args: &DiagnoseRequest) -> Result<Report> {
             let m = t.measured;
             m.cutting_force_n_per_m.is_some() || m.feed_force_n_per_m.is_some() || m.chip_thickness_m.is_some()
         };
-        for t in tests.iter().filter(is_measured) {
-            if !sims.iter().any(|s| s.id == t.id) {
-                bail!("{}: test `{}` of the recordings has no row in the simulation", sim_path.display(), t.id);
-            }
-        }
         let measured: Vec<_> = tests.iter().filter(is_measured).cloned().collect();
+        check_against_recordings(sim_path, &sims, &measured)?;
         return mode_a(entries, &measured, material.as_ref(), args.jc.as_deref());
     }
     let mf = material.context("Mode B (no --simulation) needs --material")?;
