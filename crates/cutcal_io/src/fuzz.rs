@@ -1,6 +1,7 @@
 //! Property-based fuzzing of every input reader: random bytes, random CSV built from adversarial
-//! cells, and the fixtures with random edits. Properties: no panic; an error names the file, a
-//! line inside the file and a reason; an accepted input holds only finite, in-range values.
+//! cells, and the fixtures with random edits (the tests CSV, the material and JC TOML, and the
+//! simulation CSV with its check against the recordings). Properties: no panic; an error names the
+//! file, a line inside the file and a reason; an accepted input holds only finite, in-range values.
 //!
 //! `CUTCAL_FUZZ_CASES` scales the case count of every property (default: a bounded smoke run);
 //! the documented long run is in `docs/fuzzing.md`.
@@ -11,6 +12,7 @@ use proptest::prelude::*;
 
 use super::jc_file::parse_jc;
 use super::material_file::parse_material;
+use super::simulation_csv::{check_against_recordings, parse_simulation, MAX_SIMULATION_FACTOR};
 use super::tests_csv::{parse_tests, OPTIONAL, REQUIRED};
 use super::{decode_text, InputError};
 
@@ -26,6 +28,8 @@ fn config(smoke: u32) -> ProptestConfig {
 const CSV_FIXTURE: &str = include_str!("../../../fixtures/tests/c38.csv");
 const MATERIAL_FIXTURE: &str = include_str!("../../../fixtures/materials/c38.toml");
 const JC_FIXTURE: &str = include_str!("../../../fixtures/jc/c38_table5.toml");
+const SIM_FIXTURE: &str = include_str!("../../../fixtures/diagnose/five_conditions_simulation.csv");
+const SIM_RECORDINGS: &str = include_str!("../../../fixtures/diagnose/five_conditions_recordings.csv");
 
 /// Cells and tokens that have broken parsers before, or could.
 const ADVERSARIAL: &[&str] = &[
@@ -253,6 +257,43 @@ fn check_jc(text: &str) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+/// A simulation CSV: an accepted one holds finite, in-range values, and its check against the
+/// recordings of the same five cuts either passes, with every recorded test paired within
+/// [`MAX_SIMULATION_FACTOR`], or names the simulation file.
+fn check_simulation(text: &str) -> Result<(), TestCaseError> {
+    let path = Path::new("fuzz_sim.csv");
+    match parse_simulation(path, text) {
+        Ok(sims) => {
+            prop_assert!(!sims.is_empty());
+            for s in &sims {
+                prop_assert!(s.fc_n_per_m > 0.0 && s.ft_n_per_m > 0.0 && s.chip_m > 0.0, "{:?}", s);
+                prop_assert!(s.fc_n_per_m.is_finite() && s.ft_n_per_m.is_finite() && s.chip_m.is_finite());
+                for t in [s.t_ab_c, s.t_int_c, s.shear_angle_rad].into_iter().flatten() {
+                    prop_assert!(t.is_finite(), "{:?}", s);
+                }
+            }
+            let recs = parse_tests(Path::new("recordings.csv"), SIM_RECORDINGS).expect("the fixture's recordings");
+            match check_against_recordings(path, &sims, &recs) {
+                Ok(()) => {
+                    for t in &recs {
+                        let s = sims.iter().find(|s| s.id == t.id);
+                        prop_assert!(s.is_some(), "test {} unpaired", t.id);
+                        let (s, m) = (s.unwrap(), t.measured);
+                        for (a, b) in [(s.fc_n_per_m, m.cutting_force_n_per_m), (s.chip_m, m.chip_thickness_m)] {
+                            if let Some(b) = b {
+                                prop_assert!((a / b).max(b / a) <= MAX_SIMULATION_FACTOR);
+                            }
+                        }
+                    }
+                }
+                Err(e) => check_error(&e, path, text)?,
+            }
+        }
+        Err(e) => check_error(&e, path, text)?,
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(config(256))]
 
@@ -264,6 +305,7 @@ proptest! {
                 check_csv(&text)?;
                 check_material(&text)?;
                 check_jc(&text)?;
+                check_simulation(&text)?;
             }
             Err(e) => check_error(&e, path, &String::from_utf8_lossy(&bytes))?,
         }
@@ -287,6 +329,11 @@ proptest! {
     #[test]
     fn edited_jc_fixture_never_panics(edits in proptest::collection::vec(edit(), 1..4)) {
         check_jc(&apply(JC_FIXTURE, &edits))?;
+    }
+
+    #[test]
+    fn edited_simulation_fixture_never_panics(edits in proptest::collection::vec(edit(), 1..4)) {
+        check_simulation(&apply(SIM_FIXTURE, &edits))?;
     }
 }
 

@@ -157,9 +157,11 @@ pub fn parse_simulation(path: &Path, text: &str) -> Result<Vec<SimulatedTest>, I
         if !seen.insert(id.clone()) {
             return Err(InputError::new(path, line, "test", &id, "duplicate test id"));
         }
-        let fc = required("fc_n_per_mm", num("fc_n_per_mm", 0.0, 1e4, "0 < Fc <= 1e4 N/mm")?)?;
-        let ft = required("ft_n_per_mm", num("ft_n_per_mm", 0.0, 1e4, "0 < Ft <= 1e4 N/mm")?)?;
-        let tc = required("chip_mm", num("chip_mm", 0.0, 50.0, "0 < tc <= 50 mm")?)?;
+        // Lower bounds far below any cut (1 uN/mm, 1 nm) but above the subnormal numbers, which
+        // the conversion to SI would round to 0.
+        let fc = required("fc_n_per_mm", num("fc_n_per_mm", 1e-6, 1e4, "1e-6 < Fc <= 1e4 N/mm")?)?;
+        let ft = required("ft_n_per_mm", num("ft_n_per_mm", 1e-6, 1e4, "1e-6 < Ft <= 1e4 N/mm")?)?;
+        let tc = required("chip_mm", num("chip_mm", 1e-6, 50.0, "1e-6 < tc <= 50 mm")?)?;
         out.push(SimulatedTest {
             id,
             fc_n_per_m: fc * 1e3,
@@ -211,8 +213,7 @@ mod tests {
     #[test]
     fn a_simulation_off_by_a_units_factor_is_rejected_with_its_line() {
         // Test 1 recorded at Fc 452.88 N/mm, Ft 130.81 N/mm, chip 0.4173 mm; the simulation's Ft
-        // written in kN/mm (a factor 1000) and, in a second file, its Fc as 1e-320 (a factor
-        // 4.5e322, beyond f64).
+        // written in kN/mm (a factor 1000).
         let rec = cutcal_model::CuttingTest::new("1", 2.0, 0.2e-3, 1e-3, 0.0)
             .unwrap()
             .with_forces(Some(452.88e3), Some(130.81e3))
@@ -228,11 +229,16 @@ mod tests {
         let e = check_against_recordings(Path::new("s.csv"), &kn, std::slice::from_ref(&rec)).unwrap_err();
         assert_eq!((e.line, e.field.as_str(), e.value.as_str()), (Some(3), "ft_n_per_mm", "0.13081"));
         assert!(e.reason.contains("recorded at 130.81 N/mm") && e.reason.contains("1.000e3"), "{}", e.reason);
-        let tiny = parse("test,fc_n_per_mm,ft_n_per_mm,chip_mm\n1,1e-320,130.81,0.4173\n").unwrap();
+        // A subnormal force never reaches the check: the reader refuses it (in SI it would round
+        // towards 0). Built by hand, a simulated force of 1e-320 N/m is a factor beyond f64.
+        for v in ["1e-320", "5e-324"] {
+            let e = parse(&format!("test,fc_n_per_mm,ft_n_per_mm,chip_mm\n1,{v},130.81,0.4173\n")).unwrap_err();
+            assert_eq!((e.field.as_str(), e.reason.as_str()), ("fc_n_per_mm", "must satisfy 1e-6 < Fc <= 1e4 N/mm"));
+        }
+        let mut tiny = ok.clone();
+        tiny[0].fc_n_per_m = 1e-320;
         let e = check_against_recordings(Path::new("s.csv"), &tiny, std::slice::from_ref(&rec)).unwrap_err();
         assert_eq!((e.line, e.field.as_str()), (Some(2), "fc_n_per_mm"));
-        let written: f64 = e.value.parse().unwrap();
-        assert!((written / 1e-320 - 1.0).abs() < 1e-3, "{}", e.value);
         assert!(e.reason.contains("more than 1e308"), "{}", e.reason);
         // A recorded test with no simulation row is named.
         let other = parse("test,fc_n_per_mm,ft_n_per_mm,chip_mm\n2,452.88,130.81,0.4173\n").unwrap();
