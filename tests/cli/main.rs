@@ -11,6 +11,7 @@ mod far;
 mod hidden;
 mod identify;
 mod noise;
+mod one_condition;
 mod pipe;
 mod predict;
 mod real_cases;

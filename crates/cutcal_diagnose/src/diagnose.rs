@@ -223,6 +223,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
             }
         }
         let before_rss = current_loco.as_ref().map(|l| l.rss);
+        let carried = |c: &Candidate| crate::heldout::carried(pr.groups.len(), c);
         let nested_ok = match (&nested_loco, before_rss) {
             (Some(nl), Some(b)) => nl.rss <= b,
             _ => false,
@@ -239,9 +240,10 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                 "interval includes the off value or the estimate sits on a bound".into()
             } else {
                 match (&c.loco_after, before_rss) {
-                    (Some(a), Some(b)) if a.rss < b && nested_ok => {
+                    (Some(a), Some(b)) if a.rss < b && nested_ok && !carried(c) => {
                         "passes significance, interval and held-out checks".into()
                     }
+                    (Some(a), Some(b)) if a.rss < b && nested_ok => crate::heldout::carried_reason(c),
                     (Some(a), Some(b)) => crate::heldout::failure_reason(a.rss, b, nested_loco.as_ref().map(|l| l.rss)),
                     _ => "held-out validation impossible with fewer than 3 conditions".into(),
                 }
@@ -277,6 +279,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
                     && c.ci_ok
                     && matches!((&c.loco_after, before_rss), (Some(a), Some(b)) if a.rss < b)
                     && nested_ok
+                    && !carried(c)
                     && confounded_with(c.id).is_none()
             })
             .collect();

@@ -35,6 +35,9 @@ pub(crate) struct Candidate {
     /// (`crate::detect`).
     pub(crate) unit_limits: Vec<crate::detect::ColumnLimit>,
     pub(crate) loco_after: Option<Loco>,
+    /// The held-out pass's worst fold: the left-out condition's first test id and the candidate's
+    /// AICc change on that fold's training data (`crate::heldout::heldout_round`).
+    pub(crate) worst_fold: Option<(String, f64)>,
     pub(crate) significant: bool,
     pub(crate) accepted: bool,
     pub(crate) reason: String,
@@ -42,6 +45,48 @@ pub(crate) struct Candidate {
     pub(crate) stopped_by: Option<crate::instrument::Artefact>,
     /// The earlier claim this candidate was held back for as a confounder (it passed its checks).
     pub(crate) held_back_for: Option<MechanismId>,
+}
+
+#[cfg(test)]
+impl Candidate {
+    /// A first-round candidate of mechanism `id` at `daicc`, significant with a usable interval
+    /// (unit tests of the decision rules).
+    pub(crate) fn stub(id: MechanismId, daicc: f64, accepted: bool) -> Self {
+        let fit = crate::fit::Fit {
+            x: vec![],
+            resid: vec![],
+            rss: 0.0,
+            penalty: 0.0,
+            k: 0,
+            preds: vec![],
+            status: crate::fit::FitStatus::Converged,
+        };
+        let spec = Spec { mechanisms: vec![id], ctx: crate::context::Context::of(&[]) };
+        Self {
+            id,
+            spec,
+            fit,
+            p: 1e-6,
+            daicc,
+            explained: 0.5,
+            absorption: 0.0,
+            screen_p: 1e-6,
+            ci: vec![],
+            ci_note: String::new(),
+            ci_ok: true,
+            conflict: None,
+            change: vec![],
+            sens: vec![],
+            unit_limits: vec![],
+            loco_after: None,
+            worst_fold: None,
+            significant: true,
+            accepted,
+            reason: String::new(),
+            stopped_by: None,
+            held_back_for: None,
+        }
+    }
 }
 
 /// Held-out residuals of a leave-one-condition-out pass, in observation order (noise units).

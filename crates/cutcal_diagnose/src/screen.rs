@@ -309,6 +309,7 @@ pub(crate) fn screen_and_refit(
             sens: s.sens,
             unit_limits: s.unit_limits,
             loco_after: None,
+            worst_fold: None,
             significant: false,
             accepted: false,
             reason: String::new(),

@@ -299,41 +299,8 @@ mod tests {
         assert!(interface_noise_note(V::None, with_t, false, 0.04).is_none());
     }
 
-    /// A first-round candidate of mechanism `id` at `daicc`, significant with a usable interval.
     fn cand(id: M, daicc: f64, accepted: bool) -> Candidate {
-        let fit = crate::fit::Fit {
-            x: vec![],
-            resid: vec![],
-            rss: 0.0,
-            penalty: 0.0,
-            k: 0,
-            preds: vec![],
-            status: crate::fit::FitStatus::Converged,
-        };
-        let spec = crate::fit::Spec { mechanisms: vec![id], ctx: crate::context::Context::of(&[]) };
-        Candidate {
-            id,
-            spec,
-            fit,
-            p: 1e-6,
-            daicc,
-            explained: 0.5,
-            absorption: 0.0,
-            screen_p: 1e-6,
-            ci: vec![],
-            ci_note: String::new(),
-            ci_ok: true,
-            conflict: None,
-            change: vec![],
-            sens: vec![],
-            unit_limits: vec![],
-            loco_after: None,
-            significant: true,
-            accepted,
-            reason: String::new(),
-            stopped_by: None,
-            held_back_for: None,
-        }
+        Candidate::stub(id, daicc, accepted)
     }
 
     #[test]
