@@ -1,4 +1,5 @@
-//! Conditions far from the rest (a report note; it decides nothing): a condition whose residual
+//! Conditions far from the rest (a report note; it decides nothing, while a claim that one
+//! condition carries is refused by `heldout::carried`): a condition whose residual
 //! against the baseline (before any mechanism: where simulation and recordings disagree) departs in
 //! one output from the other conditions' median by more than [`ROBUST_Z`] robust standard
 //! deviations. The Hampel identifier (Hampel 1974, J. Am. Stat. Assoc.
