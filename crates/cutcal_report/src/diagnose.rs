@@ -410,7 +410,7 @@ mod tests {
         let mut a = args("fixtures/tests/c38.csv", None, None, None);
         a.simulation = Some(sim);
         let e = diagnose_files(&a).unwrap_err().to_string();
-        assert!(e.contains("test `3`"), "{e}");
+        assert!(e.contains("s.csv: field `test` = '3'") && e.contains("has no row in the simulation"), "{e}");
     }
 
     #[test]
