@@ -279,7 +279,12 @@ fn check_simulation(text: &str) -> Result<(), TestCaseError> {
                         let s = sims.iter().find(|s| s.id == t.id);
                         prop_assert!(s.is_some(), "test {} unpaired", t.id);
                         let (s, m) = (s.unwrap(), t.measured);
-                        for (a, b) in [(s.fc_n_per_m, m.cutting_force_n_per_m), (s.chip_m, m.chip_thickness_m)] {
+                        let pairs = [
+                            (s.fc_n_per_m, m.cutting_force_n_per_m),
+                            (s.ft_n_per_m, m.feed_force_n_per_m),
+                            (s.chip_m, m.chip_thickness_m),
+                        ];
+                        for (a, b) in pairs {
                             if let Some(b) = b {
                                 prop_assert!((a / b).max(b / a) <= MAX_SIMULATION_FACTOR);
                             }
