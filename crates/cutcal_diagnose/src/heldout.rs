@@ -17,8 +17,8 @@ use crate::stats;
 pub(crate) const CARRIED_MIN_CONDITIONS: usize = 10;
 
 /// Fills `loco_after` and `worst_fold` of the candidates `sig` (indices into `cands`, the
-/// significant ones with a usable interval) and returns the nested pipeline's held-out residuals, or `None` when there are
-/// too few conditions to hold one out.
+/// significant ones with a usable interval) and returns the nested pipeline's held-out residuals,
+/// or `None` when there are too few conditions to hold one out.
 ///
 /// Nested pipeline: inside each fold, the significance decision is re-run on the fold's fits (the
 /// round's level `alpha_round`, the F-test of the refit, and an AICc below the fold's current
