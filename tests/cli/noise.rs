@@ -1,7 +1,8 @@
 //! A stated interface-temperature uncertainty (`t_int_sd_c`, K per row) sets the noise the
 //! diagnosis weighs the interface temperature by, as the force and chip sd columns do for theirs
-//! (`cutcal_diagnose::noise`). Without it the report says the 10 % default was assumed, and a
-//! verdict that claims nothing says how to state a better one.
+//! (`cutcal_diagnose::noise`). Without it, and with too few conditions (the fixture has 5) to read it
+//! from neighbouring ones, the report says the 10 % default was assumed, and a verdict that claims
+//! nothing says how to state a better one.
 
 use super::json as report;
 
@@ -48,4 +49,79 @@ fn a_stated_interface_temperature_sd_is_the_noise_the_diagnosis_uses() {
     assert_ne!(without["verdict"], "missing_physics", "{without}");
     let explanation = without["explanation"].as_str().unwrap();
     assert!(explanation.contains("assumed 10 % scatter") && explanation.contains("t_int_sd_c"), "{explanation}");
+}
+
+/// The CSV's columns by name, one map per row.
+fn rows(path: &str) -> Vec<std::collections::HashMap<String, String>> {
+    let text = std::fs::read_to_string(super::root().join(path)).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();
+    lines.map(|l| header.iter().cloned().zip(l.split(',').map(str::to_string)).collect()).collect()
+}
+
+/// Without repeats or a stated sd, the interface temperature's scatter is read from neighbouring
+/// conditions (`cutcal_diagnose::noise`, Munk et al. 2005). The fixture (8 conditions, a far
+/// condition at test 1) gives it; the test computes it again from the two CSVs: `r = ln((T_rec -
+/// 20) / (T_sim - 20))` per test, each test's nearest neighbour in (ln V, ln h, rake) scaled by
+/// their ranges (the first on a tie), and the root of the mean of `(r_i - r_j)^2 / 2` over the
+/// distinct pairs, floored at 5 %. The far condition makes it large (14 %), as a difference
+/// estimate that is biased upwards by what is not smooth should be.
+#[test]
+fn the_interface_temperature_scatter_is_read_from_neighbouring_conditions() {
+    let rec = rows("fixtures/diagnose/far_condition_recordings.csv");
+    let sim = rows("fixtures/diagnose/far_condition_simulation.csv");
+    let num = |m: &std::collections::HashMap<String, String>, k: &str| m[k].parse::<f64>().unwrap();
+    let pts: Vec<([f64; 3], f64)> = rec
+        .iter()
+        .map(|r| {
+            let s = sim.iter().find(|s| s["test"] == r["test"]).unwrap();
+            let x = [num(r, "speed_m_min").ln(), num(r, "uncut_mm").ln(), num(r, "rake_deg").to_radians()];
+            (x, ((num(r, "t_int_c") - 20.0) / (num(s, "t_int_c") - 20.0)).ln())
+        })
+        .collect();
+    let range: Vec<f64> = (0..3)
+        .map(|k| {
+            let v: Vec<f64> = pts.iter().map(|p| p.0[k]).collect();
+            v.iter().copied().fold(f64::NEG_INFINITY, f64::max) - v.iter().copied().fold(f64::INFINITY, f64::min)
+        })
+        .collect();
+    let dist = |a: &[f64; 3], b: &[f64; 3]| -> f64 {
+        (0..3).filter(|&k| range[k] > 0.0).map(|k| ((a[k] - b[k]) / range[k]).powi(2)).sum()
+    };
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
+    for i in 0..pts.len() {
+        let mut best = None::<(usize, f64)>;
+        for j in (0..pts.len()).filter(|&j| j != i) {
+            let d = dist(&pts[i].0, &pts[j].0);
+            if best.is_none_or(|(_, b)| d < b) {
+                best = Some((j, d));
+            }
+        }
+        let j = best.unwrap().0;
+        if !pairs.contains(&(i.min(j), i.max(j))) {
+            pairs.push((i.min(j), i.max(j)));
+        }
+    }
+    let mean: f64 = pairs.iter().map(|&(i, j)| 0.5 * (pts[i].1 - pts[j].1).powi(2)).sum::<f64>() / pairs.len() as f64;
+    let expected_pct = (100.0 * mean.sqrt()).max(5.0);
+    assert!(expected_pct > 10.0, "the far condition should inflate the estimate: {expected_pct}");
+
+    let out = report(&[
+        "diagnose",
+        "--recordings",
+        "fixtures/diagnose/far_condition_recordings.csv",
+        "--simulation",
+        "fixtures/diagnose/far_condition_simulation.csv",
+        "--json",
+    ]);
+    let pct = out["noise_pct"][3].as_f64().unwrap();
+    assert!((pct - expected_pct).abs() < 1e-9, "{pct} against {expected_pct}");
+    let source = out["noise_source"][3].as_str().unwrap();
+    let df = pts.len() / 2;
+    assert!(
+        source.starts_with("neighbouring conditions") && source.contains(&format!("{} pairs, df = {df}", pairs.len())),
+        "{source}"
+    );
+    // Not assumed, so the explanation does not ask for the column.
+    assert!(!out["explanation"].as_str().unwrap().contains("t_int_sd_c"), "{out}");
 }

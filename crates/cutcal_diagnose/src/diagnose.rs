@@ -85,15 +85,16 @@ impl Config {
 ///
 /// Returns an error if nothing was measured, or the baseline cannot be simulated.
 pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Result<Report, DiagnoseError> {
-    // A measured interface temperature is used only when the simulator gives one at every test.
+    // A measured interface temperature is used only when the simulator gives one at every test; the
+    // simulated one also lets its scatter be read from neighbouring conditions (`crate::noise`).
     let stripped: Vec<CuttingTest>;
     let mut tests = tests;
+    let mut t_int_sim: Option<Vec<f64>> = None;
     if tests.iter().any(|t| t.measured.interface_temperature_c.is_some()) {
         let start: Vec<f64> = sim.baseline_params().iter().map(|p| p.start).collect();
-        let gives = sim
-            .simulate(tests, &start, &vec![crate::hooks::Hooks::NEUTRAL; tests.len()])
-            .is_ok_and(|p| p.iter().all(|p| p.t_int_c.is_some()));
-        if !gives {
+        t_int_sim = (sim.simulate(tests, &start, &vec![crate::hooks::Hooks::NEUTRAL; tests.len()]).ok())
+            .and_then(|p| p.iter().map(|p| p.t_int_c).collect());
+        if t_int_sim.is_none() {
             stripped = tests
                 .iter()
                 .map(|t| {
@@ -110,7 +111,7 @@ pub fn diagnose(sim: &dyn Simulator, tests: &[CuttingTest], cfg: &Config) -> Res
         return Err(DiagnoseError::Inconsistent("no measured force or chip thickness in the recordings".into()));
     }
     let groups = condition_groups(tests);
-    let noise_model = crate::noise::from_data(tests, &groups, cfg.noise);
+    let noise_model = crate::noise::from_data(tests, &groups, cfg.noise, t_int_sim.as_deref());
     let cfg = &Config { noise: noise_model.sd, ..cfg.clone() };
     let pr = Problem { sim, tests, obs, groups, cfg };
     // The optional measurements every test holds, for the separating advice of the report.
