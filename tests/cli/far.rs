@@ -8,20 +8,6 @@ use super::json as report;
 const RECORDINGS: &str = "fixtures/diagnose/far_condition_recordings.csv";
 const SIMULATION: &str = "fixtures/diagnose/far_condition_simulation.csv";
 
-/// The `col` column of a CSV fixture, by test id.
-fn column(path: &str, col: &str) -> Vec<(String, f64)> {
-    let text = std::fs::read_to_string(super::root().join(path)).unwrap();
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let c = header.iter().position(|h| *h == col).unwrap();
-    lines
-        .map(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            (f[0].to_string(), f[c].parse().unwrap())
-        })
-        .collect()
-}
-
 fn median(v: &[f64]) -> f64 {
     let mut s = v.to_vec();
     s.sort_by(f64::total_cmp);
@@ -37,8 +23,8 @@ fn median(v: &[f64]) -> f64 {
 fn a_condition_on_another_branch_is_named_as_far_from_the_rest() {
     // The raw data: at test 1 the recorded cutting force is 1.7 times the simulation's; at the
     // other seven, within 0.98-1.14 times.
-    let rec = column(RECORDINGS, "fc_n_per_mm");
-    let sim = column(SIMULATION, "fc_n_per_mm");
+    let rec = super::column(RECORDINGS, "fc_n_per_mm");
+    let sim = super::column(SIMULATION, "fc_n_per_mm");
     for ((id, r), (id_s, s)) in rec.iter().zip(&sim) {
         assert_eq!(id, id_s);
         let ratio = r / s;

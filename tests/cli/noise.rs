@@ -51,14 +51,6 @@ fn a_stated_interface_temperature_sd_is_the_noise_the_diagnosis_uses() {
     assert!(explanation.contains("assumed 10 % scatter") && explanation.contains("t_int_sd_c"), "{explanation}");
 }
 
-/// The CSV's columns by name, one map per row.
-fn rows(path: &str) -> Vec<std::collections::HashMap<String, String>> {
-    let text = std::fs::read_to_string(super::root().join(path)).unwrap();
-    let mut lines = text.lines();
-    let header: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();
-    lines.map(|l| header.iter().cloned().zip(l.split(',').map(str::to_string)).collect()).collect()
-}
-
 /// Without repeats or a stated sd, the interface temperature's scatter is read from neighbouring
 /// conditions (`cutcal_diagnose::noise`, Munk et al. 2005). The fixture (8 conditions, a far
 /// condition at test 1) gives it; the test computes it again from the two CSVs: `r = ln((T_rec -
@@ -68,15 +60,14 @@ fn rows(path: &str) -> Vec<std::collections::HashMap<String, String>> {
 /// estimate that is biased upwards by what is not smooth should be.
 #[test]
 fn the_interface_temperature_scatter_is_read_from_neighbouring_conditions() {
-    let rec = rows("fixtures/diagnose/far_condition_recordings.csv");
-    let sim = rows("fixtures/diagnose/far_condition_simulation.csv");
-    let num = |m: &std::collections::HashMap<String, String>, k: &str| m[k].parse::<f64>().unwrap();
-    let pts: Vec<([f64; 3], f64)> = rec
-        .iter()
-        .map(|r| {
-            let s = sim.iter().find(|s| s["test"] == r["test"]).unwrap();
-            let x = [num(r, "speed_m_min").ln(), num(r, "uncut_mm").ln(), num(r, "rake_deg").to_radians()];
-            (x, ((num(r, "t_int_c") - 20.0) / (num(s, "t_int_c") - 20.0)).ln())
+    let rec = |col: &str| super::column("fixtures/diagnose/far_condition_recordings.csv", col);
+    let sim = super::column("fixtures/diagnose/far_condition_simulation.csv", "t_int_c");
+    let (v, h, rake, t_rec) = (rec("speed_m_min"), rec("uncut_mm"), rec("rake_deg"), rec("t_int_c"));
+    let pts: Vec<([f64; 3], f64)> = (0..t_rec.len())
+        .map(|i| {
+            let t_sim = sim.iter().find(|(id, _)| *id == t_rec[i].0).unwrap().1;
+            let x = [v[i].1.ln(), h[i].1.ln(), rake[i].1.to_radians()];
+            (x, ((t_rec[i].1 - 20.0) / (t_sim - 20.0)).ln())
         })
         .collect();
     let range: Vec<f64> = (0..3)

@@ -125,16 +125,13 @@ pub fn from_data(
                 100.0 * (ss / d).sqrt(),
                 100.0 * default[j]
             );
-        } else if let Some((ss, pairs, df)) =
-            (j == 3).then(|| t_int_sim.and_then(|s| by_neighbours(tests, s))).flatten()
-        {
-            let d = df as f64;
-            sd[j] = (ss / d).sqrt().max(NEIGHBOUR_FLOOR);
+        } else if let Some((var, pairs, df)) = t_int_sim.filter(|_| j == 3).and_then(|s| by_neighbours(tests, s)) {
+            sd[j] = var.sqrt().max(NEIGHBOUR_FLOOR);
             assumed[j] = false;
             source[j] = format!(
                 "neighbouring conditions (difference estimate, Munk et al. 2005: {pairs} pairs, df = {df}, sd {:.1} %), \
                  at least {:.0} %",
-                100.0 * (ss / d).sqrt(),
+                100.0 * var.sqrt(),
                 100.0 * NEIGHBOUR_FLOOR
             );
         }
@@ -142,8 +139,8 @@ pub fn from_data(
     NoiseModel { sd, source, assumed }
 }
 
-/// The difference-based estimate of the interface temperature's scatter (module docs): the sum of
-/// squares `df s^2`, the number of distinct nearest-neighbour pairs, and `df`. The pairs share
+/// The difference-based estimate of the interface temperature's scatter (module docs): the variance
+/// `s^2`, the number of distinct nearest-neighbour pairs, and `df`. The pairs share
 /// conditions, so they are credited with half the conditions as degrees of freedom (as many as
 /// disjoint pairs could hold). `None` with fewer than 6 tests measured (df < 3, as for repeats).
 fn by_neighbours(tests: &[CuttingTest], t_int_sim: &[f64]) -> Option<(f64, usize, usize)> {
@@ -181,9 +178,8 @@ fn by_neighbours(tests: &[CuttingTest], t_int_sim: &[f64]) -> Option<(f64, usize
             }
         }
     }
-    let mean_half_sq =
-        pairs.iter().map(|&(i, j)| 0.5 * (pts[i].1 - pts[j].1).powi(2)).sum::<f64>() / pairs.len() as f64;
-    Some((df as f64 * mean_half_sq, pairs.len(), df))
+    let var = pairs.iter().map(|&(i, j)| 0.5 * (pts[i].1 - pts[j].1).powi(2)).sum::<f64>() / pairs.len() as f64;
+    Some((var, pairs.len(), df))
 }
 
 #[cfg(test)]
