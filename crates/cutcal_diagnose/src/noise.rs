@@ -9,7 +9,7 @@
 //! 2. the pooled spread of `ln y` over repeated tests at one condition, when that gives at least 3
 //!    degrees of freedom, combined with the default as a prior (below);
 //! 3. for the interface temperature alone, the scatter of its ratio to the simulation between
-//!    neighbouring conditions (below);
+//!    neighbouring conditions, where it exceeds the default (below);
 //! 4. the design note's defaults (3 %, 5 %, 5 %, and 10 % of the interface temperature rise).
 //!
 //! A floor of 0.5 % keeps a lucky repeat from claiming a precision no dynamometer has.
@@ -30,12 +30,16 @@
 //! misses; the latter (a nuisance, a mechanism) varies smoothly over the conditions, so half the
 //! squared difference of `r` between a condition and its nearest neighbour (in ln V, ln h and rake,
 //! each scaled by its range) estimates the noise variance, biased upwards by what is not smooth.
-//! The estimate stands on its own, floored at 5 % (`NEIGHBOUR_FLOOR`), and needs 6 tests that
-//! record the temperature. The default of 10 % spans instruments from a calibrated thermocouple to
-//! an infrared camera of uncertain emissivity: a fixed 5 % would turn the nulls of users of the
-//! latter into alarms (`unexplained` on 77 of 135 nulls and decoys whose temperature scatters by
-//! 10 %, against 16 with the 10 % or with this estimate), and the data say which one they are. Weighed against the 10 % as a prior (as repeats
-//! are), the estimate stayed near 7 % and gained little (forty-sixth session, `docs/concealed.md`).
+//! The estimate may only raise the noise above the default, never lower it (forty-seventh session):
+//! in Mode A the interface temperature's noise stands also for what the shadow's thermal response
+//! to the nuisance does not share with the external simulation's, and that varies smoothly over the
+//! conditions, so a difference estimate cannot see it. Used alone (forty-sixth session, floored at
+//! 5 %), the estimate read the 4-8 % scatter of the OxleyPython benchmark (family o) as 5.4-5.7 %,
+//! and two of its nulls (seed 8) were then claimed as softening; with the 10 % default both are
+//! `none`. The default of 10 % spans instruments from a calibrated thermocouple to an infrared
+//! camera of uncertain emissivity; where the data scatter more (an instrument worse than that, or
+//! one test far from its neighbours), the estimate takes over (`far_condition`: 14 %). It needs 6
+//! tests that record the temperature (`docs/concealed.md`, forty-sixth and forty-seventh sections).
 //! The forces and the chip keep their defaults without repeats: a dynamometer's scatter is
 //! known to 3-5 %, and their ratios to the simulation are not smooth under flank wear (run order),
 //! a built-up edge or an outlier, which would inflate such an estimate by 1.5-3 times (read on
@@ -51,10 +55,6 @@ const FLOOR: f64 = 0.005;
 /// Degrees of freedom that the stated default carries as a prior on the variance (Smyth 2004's
 /// d0; module docs): as much as five repeats at one condition.
 const PRIOR_DF: f64 = 4.0;
-
-/// Least interface-temperature scatter credited from neighbouring conditions (module docs): the
-/// upper end of the 2-5 % the issue states for recordings, as the feed force's and chip's defaults are.
-const NEIGHBOUR_FLOOR: f64 = 0.05;
 
 /// Relative noise per output and where each came from.
 #[derive(Debug, Clone, PartialEq)]
@@ -126,14 +126,24 @@ pub fn from_data(
                 100.0 * default[j]
             );
         } else if let Some((var, pairs, df)) = t_int_sim.filter(|_| j == 3).and_then(|s| by_neighbours(tests, s)) {
-            sd[j] = var.sqrt().max(NEIGHBOUR_FLOOR);
-            assumed[j] = false;
-            source[j] = format!(
-                "neighbouring conditions (difference estimate, Munk et al. 2005: {pairs} pairs, df = {df}, sd {:.1} %), \
-                 at least {:.0} %",
-                100.0 * var.sqrt(),
-                100.0 * NEIGHBOUR_FLOOR
-            );
+            let est = var.sqrt();
+            if est > default[j] {
+                sd[j] = est;
+                assumed[j] = false;
+                source[j] = format!(
+                    "neighbouring conditions (difference estimate, Munk et al. 2005: {pairs} pairs, df = {df}, sd {:.1} %), \
+                     above the default {:.0} %",
+                    100.0 * est,
+                    100.0 * default[j]
+                );
+            } else {
+                source[j] = format!(
+                    "assumed default {:.0} % (the scatter between neighbouring conditions, {:.1} % from {pairs} pairs, \
+                     is within it)",
+                    100.0 * default[j],
+                    100.0 * est
+                );
+            }
         }
     }
     NoiseModel { sd, source, assumed }
@@ -268,54 +278,62 @@ mod tests {
     }
 
     #[test]
-    fn neighbouring_conditions_give_the_interface_temperature_scatter() {
+    fn neighbouring_conditions_raise_the_interface_temperature_scatter_above_the_default() {
         // Speeds in three close pairs (1, 1.1), (2, 2.2), (4, 4.4): each condition's nearest
-        // neighbour is its partner, so the pairs are (0,1), (2,3), (4,5). r = +-0.04 within each pair:
-        // half the squared difference 0.5 * 0.08^2 = 0.0032 each, sd sqrt(0.0032) = 0.056569, above
-        // the 5 % floor; df = 6/2 = 3.
-        let (tests, sim) = temperatures(&[1.0, 1.1, 2.0, 2.2, 4.0, 4.4], &[0.04, -0.04, 0.04, -0.04, -0.04, 0.04]);
+        // neighbour is its partner, so the pairs are (0,1), (2,3), (4,5). r = +-0.1 within each pair:
+        // half the squared difference 0.5 * 0.2^2 = 0.02 each, sd sqrt(0.02) = 0.141421, above the
+        // 10 % default, so it is used; df = 6/2 = 3.
+        let speeds = [1.0, 1.1, 2.0, 2.2, 4.0, 4.4];
         let groups: Vec<Vec<usize>> = (0..6).map(|i| vec![i]).collect();
+        let (tests, sim) = temperatures(&speeds, &[0.1, -0.1, 0.1, -0.1, -0.1, 0.1]);
         let nm = from_data(&tests, &groups, [0.03, 0.05, 0.05, 0.1], Some(&sim));
-        assert!((nm.sd[3] - 0.056_569).abs() < 1e-5, "{nm:?}");
-        assert!(!nm.assumed[3] && nm.source[3].contains("3 pairs, df = 3, sd 5.7 %"), "{nm:?}");
-        // r = +-0.02: sd 2.83 %, floored at 5 %.
-        let (tests, sim) = temperatures(&[1.0, 1.1, 2.0, 2.2, 4.0, 4.4], &[0.02, -0.02, 0.02, -0.02, -0.02, 0.02]);
+        assert!((nm.sd[3] - 0.141_421).abs() < 1e-5, "{nm:?}");
+        assert!(!nm.assumed[3] && nm.source[3].contains("3 pairs, df = 3, sd 14.1 %"), "{nm:?}");
+        // r = +-0.04: sd sqrt(0.5 * 0.08^2) = 5.66 %, within the default, which stands and says so.
+        let (tests, sim) = temperatures(&speeds, &[0.04, -0.04, 0.04, -0.04, -0.04, 0.04]);
         let nm = from_data(&tests, &groups, [0.03, 0.05, 0.05, 0.1], Some(&sim));
-        assert!((nm.sd[3] - 0.05).abs() < 1e-12 && nm.source[3].contains("sd 2.8 %"), "{nm:?}");
+        assert!(nm.assumed[3] && nm.sd[3] == 0.1, "{nm:?}");
+        assert!(
+            nm.source[3].starts_with("assumed default 10 %") && nm.source[3].contains("5.7 % from 3 pairs"),
+            "{nm:?}"
+        );
         // The forces keep their default, and without the simulated temperature so does this.
         assert!(nm.assumed[0] && nm.sd[0] == 0.03);
         let nm = from_data(&tests, &groups, [0.03, 0.05, 0.05, 0.1], None);
-        assert!(nm.assumed[3] && nm.sd[3] == 0.1, "{nm:?}");
-        // Five conditions (df 2) are too few: the default stands.
+        assert!(nm.assumed[3] && nm.sd[3] == 0.1 && nm.source[3] == "assumed default 10 %", "{nm:?}");
+        // Five conditions (df 2) are too few: the default stands, with no estimate to report.
+        let (tests, sim) = temperatures(&speeds, &[0.1, -0.1, 0.1, -0.1, -0.1, 0.1]);
         let nm = from_data(&tests[..5], &groups[..5], [0.03, 0.05, 0.05, 0.1], Some(&sim[..5]));
-        assert!(nm.assumed[3] && nm.sd[3] == 0.1, "{nm:?}");
+        assert!(nm.assumed[3] && nm.sd[3] == 0.1 && nm.source[3] == "assumed default 10 %", "{nm:?}");
     }
 
     proptest::proptest! {
         /// What varies smoothly over the conditions is not scatter: a common factor on the measured
         /// rise (a thermocouple's gain) leaves the estimate unchanged, and a smooth trend in ln V
-        /// adds at most its squared step between neighbours.
+        /// adds at most its step between neighbours; and the noise used is never below the default.
         #[test]
         fn a_gain_or_a_smooth_trend_is_not_scatter(
-            noise in proptest::collection::vec(-0.05f64..0.05, 8),
+            noise in proptest::collection::vec(-0.2f64..0.2, 8),
             gain in -0.3f64..0.3,
             slope in -0.2f64..0.2,
         ) {
             let v: Vec<f64> = (0..8).map(|i| 1.0 + 0.5 * f64::from(i)).collect();
             let groups: Vec<Vec<usize>> = (0..8).map(|i| vec![i]).collect();
             let (tests, sim) = temperatures(&v, &noise);
-            let base = from_data(&tests, &groups, [0.03, 0.05, 0.05, 0.1], Some(&sim)).sd[3];
+            let (base, _, _) = by_neighbours(&tests, &sim).unwrap();
+            let nm = from_data(&tests, &groups, [0.03, 0.05, 0.05, 0.1], Some(&sim));
+            proptest::prop_assert!((nm.sd[3] - base.sqrt().max(0.1)).abs() < 1e-12, "{} {:?}", base, nm);
             let shifted: Vec<f64> = noise.iter().map(|r| r + gain).collect();
             let (tests, sim) = temperatures(&v, &shifted);
-            let with_gain = from_data(&tests, &groups, [0.03, 0.05, 0.05, 0.1], Some(&sim)).sd[3];
+            let (with_gain, _, _) = by_neighbours(&tests, &sim).unwrap();
             proptest::prop_assert!((with_gain - base).abs() < 1e-9, "{} {}", base, with_gain);
             // A trend slope * ln V with no noise: neighbours differ by at most slope * ln(1.5), so
-            // the estimate is at most that over sqrt(2), or the floor.
+            // the estimate is at most that over sqrt(2).
             let trend: Vec<f64> = v.iter().map(|x| slope * x.ln()).collect();
             let (tests, sim) = temperatures(&v, &trend);
-            let s = from_data(&tests, &groups, [0.03, 0.05, 0.05, 0.1], Some(&sim)).sd[3];
-            let bound = (slope.abs() * 1.5f64.ln() / 2f64.sqrt()).max(NEIGHBOUR_FLOOR);
-            proptest::prop_assert!(s <= bound + 1e-12, "{} {}", s, bound);
+            let (var, _, _) = by_neighbours(&tests, &sim).unwrap();
+            let bound = slope.abs() * 1.5f64.ln() / 2f64.sqrt();
+            proptest::prop_assert!(var.sqrt() <= bound + 1e-12, "{} {}", var.sqrt(), bound);
         }
     }
 }
