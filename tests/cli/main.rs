@@ -6,6 +6,7 @@
 mod bootstrap;
 mod card_law;
 mod catalogue;
+mod channel_gain;
 mod determinism;
 mod far;
 mod hidden;

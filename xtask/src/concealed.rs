@@ -123,8 +123,9 @@ impl Family {
 }
 
 /// Kinds of the `n` datasets of a family, in a seeded shuffled order: nulls, each mechanism and each
-/// decoy in the proportion 56 : 14 (each of 8) : 8 (each of 3), largest remainders first. For
-/// n = 200: 58 nulls, 14-15 per mechanism, 8-9 per decoy.
+/// decoy in the proportion 56 : 14 (each of 8) : 8 (each of 4), largest remainders first. For
+/// n = 200: 56 nulls, 14 per mechanism, 8 per decoy (58, 14-15 and 8-9 before the forty-eighth
+/// session's fourth decoy).
 pub fn kinds(n: usize, seed: u64) -> Vec<String> {
     let mut groups: Vec<(String, f64)> = vec![("null".into(), 56.0)];
     groups.extend(MECHANISMS.iter().map(|m| (m.to_string(), 14.0)));

@@ -1,12 +1,17 @@
 //! Instrument explanations as competitors (issue 10, decoys): before a mechanism is claimed, the
 //! mismatch must be explained better by it than by an artefact of the measurement chain.
 //!
-//! Two artefacts are fitted jointly with the current model (baseline, nuisance and the mechanisms
+//! The artefacts are fitted jointly with the current model (baseline, nuisance and the mechanisms
 //! already accepted), each with one parameter `g`:
 //!
 //! - **force gain**: both force channels scaled by one factor `exp(g)` (a calibration error of the
 //!   dynamometer's charge amplifier acts on both channels alike, ISO 21612:2021 Sec 5); the chip
 //!   thickness and the temperature are untouched, unlike a flow-stress level;
+//! - **one channel's gain**: the cutting-force or the feed-force channel alone scaled by `exp(g)`
+//!   (each channel of a multi-channel charge amplifier has its own sensitivity setting, so one can
+//!   be set or calibrated wrong alone). A cross-talk adds a share of the *other* channel, whose
+//!   ratio to this one changes over the conditions (Ft/Fc falls with the feed), so the two separate
+//!   where the data span such a change;
 //! - **force drift**: both force channels scaled by `exp(g s_i)` with `s_i` the run-order state of
 //!   test i (charge-amplifier drift grows with time and acts on both channels alike). A flank wear
 //!   land instead raises the feed force relatively more than the cutting force (land normal stress
@@ -36,6 +41,10 @@ use crate::stats;
 pub(crate) enum Artefact {
     /// One gain on both force channels.
     Gain,
+    /// One gain on the cutting-force channel alone.
+    CuttingGain,
+    /// One gain on the feed-force channel alone.
+    FeedGain,
     /// A drift of both force channels over the run order.
     Drift,
 }
@@ -45,7 +54,18 @@ impl Artefact {
     pub(crate) fn describe(self) -> &'static str {
         match self {
             Artefact::Gain => "a common gain error of both force channels",
+            Artefact::CuttingGain => "a gain error of the cutting-force channel alone",
+            Artefact::FeedGain => "a gain error of the feed-force channel alone",
             Artefact::Drift => "a drift of both force channels over the run order",
+        }
+    }
+
+    /// Which force channels the artefact scales: (cutting, feed) as 1 or 0.
+    fn channels(self) -> [f64; 2] {
+        match self {
+            Artefact::Gain | Artefact::Drift => [1.0, 1.0],
+            Artefact::CuttingGain => [1.0, 0.0],
+            Artefact::FeedGain => [0.0, 1.0],
         }
     }
 }
@@ -108,6 +128,8 @@ struct ArtefactProblem<'a> {
     spec: &'a Spec,
     /// Per-test exponent basis of the force factor `exp(g b_i)`.
     basis: Vec<f64>,
+    /// The channels the factor scales ([`Artefact::channels`]).
+    channels: [f64; 2],
     /// Whether the artefact parameter carries its prior pseudo-residual `g / G_PRIOR_SD`.
     prior: bool,
 }
@@ -129,10 +151,10 @@ impl LmProblem for ArtefactProblem<'_> {
                 DiagnoseError::Model { source, .. } => IdentError::Model(source),
                 other => IdentError::InvalidOptions(other.to_string()),
             })?;
+        let [on_fc, on_ft] = self.channels;
         for (pd, b) in preds.iter_mut().zip(&self.basis) {
-            let f = (g[0] * b).exp();
-            pd.fc_n_per_m *= f;
-            pd.ft_n_per_m *= f;
+            pd.fc_n_per_m *= (g[0] * b * on_fc).exp();
+            pd.ft_n_per_m *= (g[0] * b * on_ft).exp();
         }
         let r = fit::residuals(&self.pr.obs, &preds, &self.pr.cfg.noise);
         for (i, v) in r.iter().enumerate() {
@@ -160,6 +182,10 @@ impl LmProblem for ArtefactProblem<'_> {
 /// (a fit that fails with the prior keeps the one without, which stops claims more readily).
 pub(crate) fn fit_artefacts(pr: &Problem<'_>, current: &Fit, spec: &Spec) -> Vec<ArtefactFit> {
     let mut kinds = vec![Artefact::Gain];
+    let recorded = |f: fn(&cutcal_model::Measured) -> Option<f64>| pr.tests.iter().any(|t| f(&t.measured).is_some());
+    if recorded(|m| m.cutting_force_n_per_m) && recorded(|m| m.feed_force_n_per_m) {
+        kinds.extend([Artefact::CuttingGain, Artefact::FeedGain]);
+    }
     if spec.ctx.wear_state.is_some() {
         kinds.push(Artefact::Drift);
     }
@@ -187,7 +213,7 @@ pub(crate) fn fit_artefact(
     prior: bool,
 ) -> Option<ArtefactFit> {
     let basis = match artefact {
-        Artefact::Gain => vec![1.0; pr.tests.len()],
+        Artefact::Gain | Artefact::CuttingGain | Artefact::FeedGain => vec![1.0; pr.tests.len()],
         Artefact::Drift => spec.ctx.wear_state.clone()?,
     };
     let (mut names, mut lo, mut hi, _) = layout(pr.sim, spec);
@@ -203,7 +229,7 @@ pub(crate) fn fit_artefact(
         cost_tolerance: 1e-10,
         step_tolerance: 1e-9,
     };
-    let problem = ArtefactProblem { pr, spec, basis, prior };
+    let problem = ArtefactProblem { pr, spec, basis, channels: artefact.channels(), prior };
     let r = minimise(&problem, &bounds, &DVector::from_vec(start.clone()), &opts).ok()?;
     let mut out = DVector::zeros(problem.residual_count());
     problem.residuals(&r.params, &mut out).ok()?;
@@ -293,10 +319,10 @@ mod tests {
         assert!((a.aicc(20) - 7.5).abs() < 1e-9, "{}", a.aicc(20));
     }
 
-    /// Fits the artefacts on six tests whose recorded forces are `gain` times a Mode A
-    /// simulation's (+-2 % deterministic scatter on Fc, none on Ft and the chip), over a baseline
-    /// with no parameters.
-    fn artefacts_read_through(gain: f64) -> Vec<ArtefactFit> {
+    /// Fits the artefacts on six tests whose recorded forces are `gain_fc` and `gain_ft` times a
+    /// Mode A simulation's (+-2 % deterministic scatter on Fc, none on Ft and the chip), over a
+    /// baseline with no parameters.
+    fn artefacts_read_through(gain_fc: f64, gain_ft: f64) -> Vec<ArtefactFit> {
         use crate::context::Context;
         use crate::diagnose::Config;
         use crate::fit::observations;
@@ -308,7 +334,7 @@ mod tests {
             let (fc, ft, chip) = (2.0e5 + 2.0e4 * i as f64, 1.0e5, 2.0e-4);
             let scatter = if i % 2 == 0 { 1.02 } else { 0.98 };
             let t = CuttingTest::new(format!("{i}"), 1.0 + 0.5 * i as f64, 1e-4, 2e-3, 0.0)
-                .and_then(|t| t.with_forces(Some(fc * gain * scatter), Some(ft * gain)))
+                .and_then(|t| t.with_forces(Some(fc * gain_fc * scatter), Some(ft * gain_ft)))
                 .and_then(|t| t.with_chip_thickness(Some(chip)))
                 .unwrap();
             tests.push(t);
@@ -337,8 +363,9 @@ mod tests {
         // = 0.09116) 1 / 0.09116^2 = 120.3. The data alone give 0.0952 (ln 1.1 with the Fc
         // scatter's weighted mean, -1.5e-4); the posterior mode is 0.0952 x 9067 / (9067 + 120.3)
         // = 0.0939, and the fit pays (0.0939 / 0.09116)^2 = 1.06.
-        let fits = artefacts_read_through(1.1);
-        assert_eq!(fits.len(), 1, "a gain only: no run order, no drift");
+        let fits = artefacts_read_through(1.1, 1.1);
+        let kinds: Vec<Artefact> = fits.iter().map(|a| a.artefact).collect();
+        assert_eq!(kinds, [Artefact::Gain, Artefact::CuttingGain, Artefact::FeedGain], "no run order, no drift");
         let a = &fits[0];
         assert!(a.prior && a.within_bound());
         assert!((a.g - 0.0939).abs() < 5e-4, "{}", a.g);
@@ -351,10 +378,29 @@ mod tests {
         // Forces read 30 % high: the data want a gain beyond the 20 % bound, so the fit presses
         // against it. That is judged without the prior (which would pull the estimate inside and
         // make a physical mismatch look like a calibration error): the fit is returned as it is.
-        let fits = artefacts_read_through(1.3);
+        let fits = artefacts_read_through(1.3, 1.3);
         let a = &fits[0];
         assert!(!a.prior && !a.within_bound(), "{a:?}");
         assert!(a.penalty.abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_gain_on_one_channel_is_fitted_on_that_channel_alone() {
+        // Only the feed force reads 10 % high. The feed channel's gain sees Ft alone: information
+        // 6 / 0.05^2 = 2400 against the prior's 120.3, so the mode is ln 1.1 x 2400 / 2520.3 =
+        // 0.09531 x 0.95227 = 0.09076, and the fit leaves Fc's scatter alone: its RSS is Fc's
+        // +-2 % over 3 %, 3 x ((0.019803 / 0.03)^2 + (0.020203 / 0.03)^2) = 3 x (0.4357 + 0.4535)
+        // = 2.668 (ln 1.02, ln 0.98), plus Ft's shortfall ((0.09531 - 0.09076) / 0.05)^2 six times,
+        // 0.050: 2.717. The common gain has to split the difference between the channels and fits
+        // worse.
+        let fits = artefacts_read_through(1.0, 1.1);
+        let feed = fits.iter().find(|a| a.artefact == Artefact::FeedGain).unwrap();
+        let common = fits.iter().find(|a| a.artefact == Artefact::Gain).unwrap();
+        let cutting = fits.iter().find(|a| a.artefact == Artefact::CuttingGain).unwrap();
+        assert!((feed.g - 0.09076).abs() < 5e-4, "{}", feed.g);
+        assert!((feed.rss - 2.717).abs() < 0.005, "{}", feed.rss);
+        assert!(feed.aicc(18) < common.aicc(18) - 10.0, "{feed:?} {common:?}");
+        assert!(cutting.g.abs() < 0.01 && cutting.aicc(18) > common.aicc(18), "{cutting:?} {common:?}");
     }
 
     #[test]

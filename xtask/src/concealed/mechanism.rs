@@ -33,7 +33,7 @@ pub const MECHANISMS: [&str; 8] = [
 ];
 
 /// The decoys: not physics a library mechanism describes; the right answer is no mechanism.
-pub const DECOYS: [&str; 3] = ["decoy:gain", "decoy:outlier", "decoy:drift"];
+pub const DECOYS: [&str; 4] = ["decoy:gain", "decoy:channel_gain", "decoy:outlier", "decoy:drift"];
 
 /// Zorev (1963) stick-slip contact: normal stress sigma_n(x) = sigma_max (1 - x/l_c)^a with
 /// sigma_max = (a + 1) sigma_N (mean sigma_N), shear tau = min(k, mu sigma_n); mu(V_c) =
@@ -295,8 +295,10 @@ pub fn wear_profile(speeds_in_run_order: &[f64], taylor_n: f64) -> Vec<f64> {
 
 /// Applies decoy `hidden` to the noise-free truth `with` (rows in design order, `run_order` the run
 /// position of each) and returns its parameter; `None` (nothing drawn, nothing changed) for a
-/// mechanism or a null. `decoy:gain`: one factor 1 +- 5-15 % on both forces; `decoy:outlier`: one
-/// row's forces off by +15-35 % or -9-21 %; `decoy:drift`: both forces drifting 5-15 % over the run.
+/// mechanism or a null. `decoy:gain`: one factor 1 +- 5-15 % on both forces; `decoy:channel_gain`:
+/// one factor 1 +- 5-15 % on one force channel, the cutting or the feed force with equal chance (the
+/// parameter is the factor; forty-eighth session); `decoy:outlier`: one row's forces off by
+/// +15-35 % or -9-21 %; `decoy:drift`: both forces drifting 5-15 % over the run.
 pub fn decoy(hidden: &str, rng: &mut ChaCha8Rng, with: &mut [[f64; 4]], run_order: &[usize]) -> Option<f64> {
     let n = with.len();
     match hidden {
@@ -305,6 +307,14 @@ pub fn decoy(hidden: &str, rng: &mut ChaCha8Rng, with: &mut [[f64; 4]], run_orde
             for y in with.iter_mut() {
                 y[0] *= g;
                 y[1] *= g;
+            }
+            Some(g)
+        }
+        "decoy:channel_gain" => {
+            let channel = usize::from(rng.gen_bool(0.5));
+            let g = 1.0 + if rng.gen_bool(0.5) { 1.0 } else { -1.0 } * rng.gen_range(0.05..0.15);
+            for y in with.iter_mut() {
+                y[channel] *= g;
             }
             Some(g)
         }

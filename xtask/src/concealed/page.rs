@@ -64,13 +64,15 @@ minimum-energy shear angle within 0.5 deg of either end of its range.
 | force_crosstalk | full 2x2 channel matrix (both cross terms and both gains); family d: the dynamometer turned by an angle (the force vector rotated, up to 0.25 rad) plus a feed-into-cutting leakage c theta Ft (c 0.2-0.6) | Ft += c Fc |
 
 Decoys (right answer: no mechanism): `decoy:gain` (one factor 1 +- 5-15 % on both forces),
-`decoy:outlier` (one row's forces off by +15-35 % or -9-21 %), `decoy:drift` (both forces drifting
+`decoy:channel_gain` (one factor 1 +- 5-15 % on the cutting or the feed force alone; from the
+forty-eighth session), `decoy:outlier` (one row's forces off by +15-35 % or -9-21 %), `decoy:drift` (both forces drifting
 5-15 % over the run order).
 
 ## Datasets
 
-Per family: nulls, each mechanism and each decoy in the proportion 56 : 14 : 8 (n = 200: 58 nulls,
-14-15 per mechanism, 8-9 per decoy). Each dataset: one material; 5-30 conditions from a factorial,
+Per family: nulls, each mechanism and each decoy in the proportion 56 : 14 : 8 (n = 200: 56 nulls,
+14 per mechanism, 8 per decoy; 58, 14-15 and 8-9 with the three decoys before the forty-eighth
+session). Each dataset: one material; 5-30 conditions from a factorial,
 random or one-factor-at-a-time design over a random sub-range of 30-400 m/min and 0.03-0.3 mm (BUE
 datasets <= 200 m/min), one or two rakes in -5..+10 deg, width 1-4 mm, repeats in a quarter of them,
 run order shuffled in half. Optional columns: `order` (60 %), `edge_radius_um` (45 %; the true
