@@ -26,6 +26,8 @@ fn a_gain_on_the_feed_channel_alone_is_no_physics() {
         explanation.contains("a gain error of the feed-force channel alone explains the mismatch"),
         "{explanation}"
     );
+    assert!(explanation.contains("check the instrument before trusting"), "{explanation}");
+    assert!(!explanation.contains("treat the model as biased"), "{explanation}");
     let next = r["next_test"].as_str().unwrap();
     assert!(next.contains("dead weights") && next.contains("feed-force channel"), "{next}");
     // The stopped candidate's reason gives the fitted factor: within 3 % of the one applied (the
@@ -43,4 +45,28 @@ fn a_gain_on_the_feed_channel_alone_is_no_physics() {
         .and_then(|w| w.parse().ok())
         .expect("a factor");
     assert!((factor / APPLIED - 1.0).abs() < 0.03, "{factor} against {APPLIED}");
+}
+
+/// Family a dataset 86 of seed 27272, a null of 6 conditions, with the feed force x 0.8750910
+/// (fixtures/README.md): the global misfit is not significant, so the verdict is `none`; the text
+/// and the next test must still send the user to the instrument, not say that nothing is needed.
+#[test]
+fn a_quiet_verdict_still_asks_for_the_channel_check() {
+    let r = report(&[
+        "diagnose",
+        "--recordings",
+        "fixtures/diagnose/channel_gain_quiet_recordings.csv",
+        "--simulation",
+        "fixtures/diagnose/channel_gain_quiet_simulation.csv",
+        "--json",
+    ]);
+    assert_eq!(r["verdict"], "none", "{r}");
+    let explanation = r["explanation"].as_str().unwrap();
+    assert!(
+        explanation.contains("No physics is needed: a gain error of the feed-force channel alone"),
+        "{explanation}"
+    );
+    assert!(!explanation.contains("would only fit noise"), "{explanation}");
+    let next = r["next_test"].as_str().unwrap();
+    assert!(next.starts_with("check the force channels with dead weights"), "{next}");
 }

@@ -30,6 +30,7 @@ pub mod diagnose;
 mod locate;
 pub mod mechanism;
 mod narrative;
+mod next_test;
 mod problem;
 pub use problem::condition_groups;
 pub mod report;

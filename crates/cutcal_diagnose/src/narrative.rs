@@ -1,16 +1,13 @@
-//! The report's words: per-mechanism results, the next test that would separate the rivals
-//! (T-optimal design, Atkinson & Fedorov 1975), and the plain-language explanation.
+//! The report's words: per-mechanism results, the simulator's notes and the plain-language
+//! explanation (the next test is `crate::next_test`'s).
 
 use std::collections::BTreeMap;
 
-use cutcal_model::CuttingTest;
-
-use crate::fit::{self, output, Fit, Obs, Spec};
-use crate::instrument::Artefact;
+use crate::fit::Obs;
 use crate::mechanism::{info, MechanismId};
-use crate::problem::{rms_pct, Candidate, Loco, Problem};
+use crate::problem::{rms_pct, Candidate, Loco};
 use crate::report::*;
-use crate::separate::{own_test, runner_up_sentence, runner_up_test, separating_test, Recorded};
+use crate::separate::{runner_up_sentence, Recorded};
 
 /// The report entry of candidate `c`: its parameters with their intervals, its checks, and its
 /// detection limits at the round's level `alpha`.
@@ -131,180 +128,6 @@ fn finite(v: f64) -> Option<f64> {
 }
 
 #[allow(clippy::too_many_arguments)] // the report's assembled pieces, one call site
-pub(crate) fn next_test(
-    pr: &Problem<'_>,
-    verdict: Verdict,
-    accepted: &[MechanismId],
-    ambiguous: &[MechanismId],
-    cands: &[Candidate],
-    base: &Fit,
-    base_spec: &Spec,
-    current: &Fit,
-    current_spec: &Spec,
-    alpha: f64,
-) -> String {
-    let find = |m: MechanismId| cands.iter().find(|c| c.id == m);
-    match verdict {
-        Verdict::None => {
-            crate::detect::interface_temperature_test(pr, base, base_spec, cands, alpha).unwrap_or_else(|| {
-                "none needed: no significant mismatch; add conditions only to widen the validated range".into()
-            })
-        }
-        Verdict::Unexplained => unexplained_next_test(pr, cands, base, base_spec),
-        Verdict::MissingPhysics => {
-            let m = accepted[0];
-            let rec = Recorded::of(pr.tests);
-            let confirm = match t_optimal(pr, (&base_spec.clone(), &base.x), (current_spec, &current.x)) {
-                Some(s) => format!(
-                    "confirm {} with a test at {s} where the corrected and uncorrected models differ most",
-                    m.as_str()
-                ),
-                None => format!("confirm {}: {}", m.as_str(), own_test(m, rec)),
-            };
-            // A confounded runner-up close behind the claim (`separate::runner_up_test`).
-            match runner_up_test(cands, m, rec) {
-                Some(sep) => format!("{confirm}; {sep}"),
-                None => confirm,
-            }
-        }
-        Verdict::Ambiguous => {
-            let mut parts = Vec::new();
-            if ambiguous.len() >= 2 {
-                if let (Some(a), Some(b)) = (find(ambiguous[0]), find(ambiguous[1])) {
-                    if let Some(s) = t_optimal(pr, (&a.spec, &a.fit.x), (&b.spec, &b.fit.x)) {
-                        parts.push(format!("a test at {s} separates {} from {}", a.id.as_str(), b.id.as_str()));
-                    }
-                }
-            }
-            // The measurement in which the best rival and each other one differ in kind
-            // (`crate::separate`); a mechanism no such pair covers keeps its own test.
-            let recorded = Recorded::of(pr.tests);
-            let mut covered = Vec::new();
-            if let Some((&first, rest)) = ambiguous.split_first() {
-                for &m in rest {
-                    if let Some(t) = separating_test(first, m, recorded) {
-                        parts.push(format!("to separate {} from {}, {t}", first.as_str(), m.as_str()));
-                        covered.extend([first, m]);
-                    }
-                }
-            }
-            for m in ambiguous.iter().filter(|m| !covered.contains(m)) {
-                parts.push(format!("{}: {}", m.as_str(), own_test(*m, recorded)));
-            }
-            parts.join("; ")
-        }
-    }
-}
-
-/// The next test when nothing was claimed although the misfit is structured. A significant
-/// candidate stopped by an instrument artefact asks first for the dead-weight check of the force
-/// channels (ISO 21612: an instrument error is cheaper to rule out than new cuts); one that failed
-/// only the held-out check asks for the condition where it and the baseline differ most
-/// (T-optimal); otherwise the misfit fits no library mechanism.
-fn unexplained_next_test(pr: &Problem<'_>, cands: &[Candidate], base: &Fit, base_spec: &Spec) -> String {
-    let mut fitting: Vec<&Candidate> = cands.iter().filter(|c| c.significant && c.ci_ok && !c.accepted).collect();
-    fitting.sort_by(|a, b| a.daicc.total_cmp(&b.daicc));
-    let conditions = pr.groups.len();
-    let recorded = Recorded::of(pr.tests);
-    if let Some((c, a)) = fitting.iter().find_map(|c| c.stopped_by.map(|a| (c, a))) {
-        let drift = if a == Artefact::Drift { " and repeat the first test at the end of the series" } else { "" };
-        let check = format!("check the force channels with dead weights in each direction (ISO 21612){drift}");
-        let artefact = a.describe();
-        let id = c.id.as_str();
-        return if c.id == MechanismId::ForceCrosstalk {
-            format!(
-                "{check}: {artefact} and a cross-talk from the cutting-force channel into the feed channel explain \
-                 the mismatch about equally, and the same check tells them apart"
-            )
-        } else {
-            format!(
-                "{check}: {artefact} explains the mismatch as well as {id} does; if the channels hold their \
-                 calibration, {id} is the candidate ({})",
-                own_test(c.id, recorded)
-            )
-        };
-    }
-    if let Some(c) = fitting.first() {
-        let at = t_optimal(pr, (base_spec, &base.x), (&c.spec, &c.fit.x))
-            .map_or_else(|| " beyond the present feeds and speeds".to_string(), |s| format!(", the first at {s}"));
-        return format!(
-            "{} fits these data (p = {:.2e}) but fails the held-out check (leave one condition out) \
-             with {conditions} conditions: add conditions{at}; then {}",
-            c.id.as_str(),
-            c.p,
-            own_test(c.id, recorded)
-        );
-    }
-    // Ask only for what the recordings do not hold already.
-    let missing: Vec<&str> = [
-        (!recorded.edge_radius).then_some("the edge radius"),
-        (!recorded.flank_wear).then_some("the flank wear"),
-        (!recorded.interface_temperature).then_some("the interface temperature"),
-    ]
-    .into_iter()
-    .flatten()
-    .collect();
-    let measure = match missing.as_slice() {
-        [] => String::new(),
-        [one] => format!("measure {one}, and "),
-        [init @ .., last] => format!("measure {} and {last}, and ", init.join(", ")),
-    };
-    format!(
-        "the mismatch fits no library mechanism: {measure}add feeds and speeds outside the present range \
-         ({conditions} conditions now)"
-    )
-}
-
-/// The condition of a small grid around the design where two fitted models differ most
-/// (T-optimal discrimination, Atkinson & Fedorov 1975); `None` if the simulator cannot extrapolate.
-pub(crate) fn t_optimal(pr: &Problem<'_>, a: (&Spec, &[f64]), b: (&Spec, &[f64])) -> Option<String> {
-    if !pr.sim.can_extrapolate() {
-        return None;
-    }
-    let t0 = pr.tests.first()?;
-    let hs: Vec<f64> = pr.tests.iter().map(|t| t.uncut_chip_thickness_m).collect();
-    let vs: Vec<f64> = pr.tests.iter().map(|t| t.speed_m_per_s).collect();
-    let (hmin, hmax) = (hs.iter().cloned().fold(f64::INFINITY, f64::min), hs.iter().cloned().fold(0.0, f64::max));
-    let (vmin, vmax) = (vs.iter().cloned().fold(f64::INFINITY, f64::min), vs.iter().cloned().fold(0.0, f64::max));
-    let grid = |lo: f64, hi: f64| -> Vec<f64> {
-        (0..5).map(|i| (0.6 * lo) * ((1.6 * hi) / (0.6 * lo)).powf(i as f64 / 4.0)).collect()
-    };
-    let mut best: Option<(f64, String)> = None;
-    for h in grid(hmin, hmax) {
-        for v in grid(vmin, vmax) {
-            let Ok(mut t) = CuttingTest::new("next", v, h.min(4.9e-3), t0.width_m, t0.rake_rad) else { continue };
-            t.edge_radius_m = t0.edge_radius_m;
-            let one = [t];
-            let pred = |(spec, x): (&Spec, &[f64])| {
-                let mut ctx = spec.ctx.clone();
-                ctx.wear_state = ctx.wear_state.map(|_| vec![1.0]);
-                fit::predict(pr.sim, &one, &Spec { mechanisms: spec.mechanisms.clone(), ctx: ctx.clone() }, &ctx, x)
-                    .ok()
-            };
-            let (Some(pa), Some(pb)) = (pred(a), pred(b)) else { continue };
-            let mut dsum = 0.0;
-            let mut diffs = [0.0; 3];
-            for (j, d) in diffs.iter_mut().enumerate() {
-                *d = 100.0 * (output(&pa[0], j) / output(&pb[0], j) - 1.0);
-                dsum += ((output(&pa[0], j) / output(&pb[0], j)).ln() / pr.cfg.noise[j]).powi(2);
-            }
-            let text = format!(
-                "h = {:.3} mm, V = {:.0} m/min (predictions differ by Fc {:+.1} %, Ft {:+.1} %, tc {:+.1} %)",
-                h * 1e3,
-                v * 60.0,
-                diffs[0],
-                diffs[1],
-                diffs[2]
-            );
-            if best.as_ref().is_none_or(|(b, _)| dsum > *b) {
-                best = Some((dsum, text));
-            }
-        }
-    }
-    best.map(|b| b.1)
-}
-
-#[allow(clippy::too_many_arguments)] // the report's assembled pieces, one call site
 pub(crate) fn explain(
     verdict: Verdict,
     mismatch: &[Mismatch],
@@ -384,16 +207,30 @@ pub(crate) fn explain(
             }
         }
         Verdict::Unexplained => {
-            s.push_str(&format!(
-                "The mismatch is real (chi-square p = {:.1e}) but no library mechanism passed all checks; treat the model as biased here and do not trust extrapolation. ",
-                global.p_value
-            ));
+            s.push_str(&match cands.iter().find_map(|c| c.stopped_by) {
+                Some(a) => format!(
+                    "The mismatch is real (chi-square p = {:.1e}), and {} explains it as well as any library mechanism: \
+                     check the instrument before trusting either the recordings or the model here. ",
+                    global.p_value,
+                    a.describe()
+                ),
+                None => format!(
+                    "The mismatch is real (chi-square p = {:.1e}) but no library mechanism passed all checks; treat the \
+                     model as biased here and do not trust extrapolation. ",
+                    global.p_value
+                ),
+            });
             if let Some(c) = cands.iter().max_by(|a, b| a.explained.total_cmp(&b.explained)) {
                 s.push_str(&format!("The closest candidate was {} ({}).", c.id.as_str(), c.reason));
             }
         }
         Verdict::None => {
-            s.push_str("No mechanism is needed; a more complex model would only fit noise.");
+            s.push_str(&match cands.iter().find_map(|c| c.stopped_by) {
+                Some(a) => {
+                    format!("No physics is needed: {} explains the mismatch as well as any mechanism.", a.describe())
+                }
+                None => "No mechanism is needed; a more complex model would only fit noise.".into(),
+            });
             if let Some(u) = crate::detect::unseen_sentence(cands, alpha) {
                 s.push(' ');
                 s.push_str(&u);
