@@ -20,6 +20,8 @@
 //!
 //! Inside its bound `g` is a nuisance of the measurement chain and pays a prior of sd half the
 //! bound, as the shadow's nuisance does; whether it sits on the bound is judged without the prior.
+//! Against the cross-talk, itself an artefact of the measurement chain that pays no prior, the
+//! artefacts compete without theirs: one instrument explanation against another on equal terms.
 //!
 //! A mechanism whose refit does not beat an artefact by the AICc margin of the ambiguity rule
 //! (Burnham & Anderson 2002: a difference below 2 is no support for either) is not claimed; the
@@ -32,6 +34,7 @@ use nalgebra::DVector;
 
 use crate::error::DiagnoseError;
 use crate::fit::{self, layout, Fit, Spec};
+use crate::mechanism::MechanismId;
 use crate::problem::{Candidate, Problem};
 use crate::screen::{boundary_params, f_test, grid_chosen, tested_df};
 use crate::stats;
@@ -178,9 +181,10 @@ impl LmProblem for ArtefactProblem<'_> {
 /// whose fit fails is left out (it can then not stop a claim; the mechanism's own checks stand);
 /// the caller leaves out those whose factor sits on its bound ([`ArtefactFit::within_bound`]).
 /// Whether the factor sits on its bound is the data's own answer, without the prior; one inside
-/// it is refitted with its prior, whose cost then counts in the AICc as the nuisance priors' do
-/// (a fit that fails with the prior keeps the one without, which stops claims more readily).
-pub(crate) fn fit_artefacts(pr: &Problem<'_>, current: &Fit, spec: &Spec) -> Vec<ArtefactFit> {
+/// it is refitted with its prior when `with_prior`, whose cost then counts in the AICc as the
+/// nuisance priors' do (a fit that fails with the prior keeps the one without, which stops claims
+/// more readily). Without `with_prior` (against the cross-talk) every fit is the free one.
+pub(crate) fn fit_artefacts(pr: &Problem<'_>, current: &Fit, spec: &Spec, with_prior: bool) -> Vec<ArtefactFit> {
     let mut kinds = vec![Artefact::Gain];
     let recorded = |f: fn(&cutcal_model::Measured) -> Option<f64>| pr.tests.iter().any(|t| f(&t.measured).is_some());
     if recorded(|m| m.cutting_force_n_per_m) && recorded(|m| m.feed_force_n_per_m) {
@@ -193,7 +197,7 @@ pub(crate) fn fit_artefacts(pr: &Problem<'_>, current: &Fit, spec: &Spec) -> Vec
         .into_iter()
         .filter_map(|a| {
             let free = fit_artefact(pr, spec, &current.x, a, 0.0, false)?;
-            if !free.within_bound() {
+            if !free.within_bound() || !with_prior {
                 return Some(free);
             }
             Some(fit_artefact(pr, spec, &current.x, a, free.g, true).unwrap_or(free))
@@ -266,7 +270,8 @@ pub(crate) fn stops_claim(
     let n = pr.n();
     let base_aicc = stats::aicc(fit.objective(), n, fit.k);
     let c = &cands[best];
-    let (inside, beyond): (Vec<_>, Vec<_>) = fit_artefacts(pr, fit, spec)
+    let with_prior = c.id != MechanismId::ForceCrosstalk;
+    let (inside, beyond): (Vec<_>, Vec<_>) = fit_artefacts(pr, fit, spec, with_prior)
         .into_iter()
         .filter(|a| a.aicc(n) - base_aicc - c.daicc < pr.cfg.ambiguity_delta_aicc)
         .partition(ArtefactFit::within_bound);
@@ -322,7 +327,7 @@ mod tests {
     /// Fits the artefacts on six tests whose recorded forces are `gain_fc` and `gain_ft` times a
     /// Mode A simulation's (+-2 % deterministic scatter on Fc, none on Ft and the chip), over a
     /// baseline with no parameters.
-    fn artefacts_read_through(gain_fc: f64, gain_ft: f64) -> Vec<ArtefactFit> {
+    fn artefacts_read_through(gain_fc: f64, gain_ft: f64, with_prior: bool) -> Vec<ArtefactFit> {
         use crate::context::Context;
         use crate::diagnose::Config;
         use crate::fit::observations;
@@ -353,7 +358,7 @@ mod tests {
         };
         let spec = Spec { mechanisms: Vec::new(), ctx: Context::of(&tests) };
         let base = pr.fit(&spec, None).unwrap();
-        fit_artefacts(&pr, &base, &spec)
+        fit_artefacts(&pr, &base, &spec, with_prior)
     }
 
     #[test]
@@ -363,7 +368,7 @@ mod tests {
         // = 0.09116) 1 / 0.09116^2 = 120.3. The data alone give 0.0952 (ln 1.1 with the Fc
         // scatter's weighted mean, -1.5e-4); the posterior mode is 0.0952 x 9067 / (9067 + 120.3)
         // = 0.0939, and the fit pays (0.0939 / 0.09116)^2 = 1.06.
-        let fits = artefacts_read_through(1.1, 1.1);
+        let fits = artefacts_read_through(1.1, 1.1, true);
         let kinds: Vec<Artefact> = fits.iter().map(|a| a.artefact).collect();
         assert_eq!(kinds, [Artefact::Gain, Artefact::CuttingGain, Artefact::FeedGain], "no run order, no drift");
         let a = &fits[0];
@@ -371,6 +376,11 @@ mod tests {
         assert!((a.g - 0.0939).abs() < 5e-4, "{}", a.g);
         assert!((a.penalty - (a.g / G_PRIOR_SD).powi(2)).abs() < 1e-9, "{} {}", a.penalty, a.g);
         assert!((a.penalty - 1.06).abs() < 0.01, "{}", a.penalty);
+        // Against the cross-talk (no prior of its own) the gain competes without its prior too:
+        // the data's own 0.0952, at no cost.
+        let free = &artefacts_read_through(1.1, 1.1, false)[0];
+        assert!(!free.prior && free.penalty.abs() < 1e-12, "{free:?}");
+        assert!((free.g - 0.0952).abs() < 5e-4, "{}", free.g);
     }
 
     #[test]
@@ -378,7 +388,7 @@ mod tests {
         // Forces read 30 % high: the data want a gain beyond the 20 % bound, so the fit presses
         // against it. That is judged without the prior (which would pull the estimate inside and
         // make a physical mismatch look like a calibration error): the fit is returned as it is.
-        let fits = artefacts_read_through(1.3, 1.3);
+        let fits = artefacts_read_through(1.3, 1.3, true);
         let a = &fits[0];
         assert!(!a.prior && !a.within_bound(), "{a:?}");
         assert!(a.penalty.abs() < 1e-12);
@@ -393,7 +403,7 @@ mod tests {
         // = 2.668 (ln 1.02, ln 0.98), plus Ft's shortfall ((0.09531 - 0.09076) / 0.05)^2 six times,
         // 0.050: 2.717. The common gain has to split the difference between the channels and fits
         // worse.
-        let fits = artefacts_read_through(1.0, 1.1);
+        let fits = artefacts_read_through(1.0, 1.1, true);
         let feed = fits.iter().find(|a| a.artefact == Artefact::FeedGain).unwrap();
         let common = fits.iter().find(|a| a.artefact == Artefact::Gain).unwrap();
         let cutting = fits.iter().find(|a| a.artefact == Artefact::CuttingGain).unwrap();
